@@ -1,0 +1,40 @@
+# Every third-party dependency comes from a Debian package (see setup.sh); this file is the one
+# place that finds them and papers over their known packaging traps.
+
+find_package(Eigen3 3.4 REQUIRED NO_MODULE)
+find_package(OpenMP REQUIRED COMPONENTS CXX)
+find_package(glm REQUIRED)
+find_package(nlohmann_json 3.11 REQUIRED)
+find_package(fmt REQUIRED)
+find_package(CLI11 CONFIG REQUIRED)
+find_package(ZLIB REQUIRED)
+
+# Debian 12's OpenImageIO config lists a non-existent opencv4 include directory on its imported
+# target; CMake then refuses to build anything that links it. Filter that entry out.
+find_package(OpenImageIO CONFIG REQUIRED)
+foreach(_oiio_target OpenImageIO::OpenImageIO OpenImageIO::OpenImageIO_Util)
+  if(TARGET ${_oiio_target})
+    get_target_property(_dirs ${_oiio_target} INTERFACE_INCLUDE_DIRECTORIES)
+    if(_dirs)
+      list(FILTER _dirs EXCLUDE REGEX "opencv4")
+      set_target_properties(${_oiio_target} PROPERTIES INTERFACE_INCLUDE_DIRECTORIES "${_dirs}")
+    endif()
+  endif()
+endforeach()
+
+# OSMesa ships no CMake config; use pkg-config. Never link libGL/libOpenGL beside it: GL calls
+# would then resolve to the wrong library and silently do nothing.
+find_package(PkgConfig REQUIRED)
+pkg_check_modules(OSMESA IMPORTED_TARGET osmesa)
+if(OSMESA_FOUND)
+  message(STATUS "svr: OSMesa ${OSMESA_VERSION} found, the gl backend will be built")
+else()
+  message(STATUS "svr: OSMesa not found (install libosmesa6-dev), the gl backend is left out")
+endif()
+
+if(SVR_BUILD_TESTS)
+  find_package(GTest REQUIRED)
+endif()
+if(SVR_BUILD_BENCH)
+  find_package(benchmark REQUIRED)
+endif()

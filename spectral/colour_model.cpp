@@ -1,0 +1,158 @@
+#include "spectral/colour_model.h"
+
+#include <fmt/format.h>
+
+#include <charconv>
+#include <fstream>
+#include <nlohmann/json.hpp>
+
+#include "spectral/colorimetry.h"
+#include "spectral/componentwise_model.h"
+#include "spectral/error.h"
+#include "spectral/linear_model.h"
+
+namespace svr {
+
+std::string toString(ModelKind kind) {
+  switch (kind) {
+    case ModelKind::kRgb: return "rgb";
+    case ModelKind::kSpectral: return "spectral";
+    case ModelKind::kFactor: return "factor";
+    case ModelKind::kLinear: return "linear";
+  }
+  return "?";
+}
+
+std::string ModelName::str() const {
+  return kind == ModelKind::kRgb ? "rgb" : fmt::format("{}:{}", toString(kind), k);
+}
+
+ModelName parseModelName(const std::string& text) {
+  if (text == "rgb") return {ModelKind::kRgb, 3};
+  const auto colon = text.find(':');
+  const std::string head = text.substr(0, colon);
+  ModelKind kind;
+  int lo = 1, hi = 16;
+  if (head == "factor") {
+    kind = ModelKind::kFactor, lo = 3;
+  } else if (head == "spectral") {
+    kind = ModelKind::kSpectral, lo = 3, hi = 100000;
+  } else if (head == "linear") {
+    kind = ModelKind::kLinear, lo = 3;
+  } else {
+    throw Error(fmt::format("unknown colour model '{}'; expected rgb, factor:k, spectral:n or "
+                            "linear:k", text));
+  }
+  if (colon == std::string::npos)
+    throw Error(fmt::format("colour model '{}' needs a channel count, e.g. '{}:6'", text, head));
+  int k = 0;
+  const std::string num = text.substr(colon + 1);
+  const auto [end, ec] = std::from_chars(num.data(), num.data() + num.size(), k);
+  if (ec != std::errc() || end != num.data() + num.size() || num.empty())
+    throw Error(fmt::format("colour model '{}': channel count '{}' is not an integer", text, num));
+  if (k < lo || k > hi)
+    throw Error(fmt::format("colour model '{}': channel count {} is outside {}..{}", text, k, lo,
+                            hi));
+  return {kind, k};
+}
+
+namespace {
+
+nlohmann::json matrixToJson(const Eigen::MatrixXd& m) {
+  nlohmann::json rows = nlohmann::json::array();
+  for (Eigen::Index r = 0; r < m.rows(); ++r) {
+    std::vector<double> row(m.cols());
+    for (Eigen::Index c = 0; c < m.cols(); ++c) row[c] = m(r, c);
+    rows.push_back(row);
+  }
+  return rows;
+}
+
+Eigen::MatrixXd matrixFromJson(const nlohmann::json& j, const std::string& where) {
+  if (!j.is_array()) throw Error(fmt::format("{}: expected an array of rows", where));
+  if (j.empty()) return {};
+  const size_t cols = j[0].size();
+  Eigen::MatrixXd m(j.size(), cols);
+  for (size_t r = 0; r < j.size(); ++r) {
+    if (!j[r].is_array() || j[r].size() != cols)
+      throw Error(fmt::format("{}: row {} does not have {} numbers", where, r, cols));
+    for (size_t c = 0; c < cols; ++c) {
+      if (!j[r][c].is_number())
+        throw Error(fmt::format("{}: row {} column {} is not a number", where, r, c));
+      m(r, c) = j[r][c].get<double>();
+    }
+  }
+  if (!m.allFinite()) throw Error(fmt::format("{}: contains a non-finite number", where));
+  return m;
+}
+
+}  // namespace
+
+nlohmann::json ComponentwiseModel::toJson() const {
+  return {{"model", name()},
+          {"variant", variant()},
+          {"grid", {{"start_nm", grid_.start_nm}, {"step_nm", grid_.step_nm}, {"count", grid_.count}}},
+          {"projection", matrixToJson(projection_)},
+          {"to_xyz", matrixToJson(to_xyz_)},
+          {"basis", matrixToJson(basis_)}};
+}
+
+nlohmann::json LinearModel::toJson() const {
+  return {{"model", name()},
+          {"variant", variant()},
+          {"grid", {{"start_nm", grid_.start_nm}, {"step_nm", grid_.step_nm}, {"count", grid_.count}}},
+          {"to_xyz", matrixToJson(to_xyz_)},
+          {"basis", matrixToJson(basis_)}};
+}
+
+std::unique_ptr<ColourModel> modelFromJson(const nlohmann::json& j, const std::string& source) {
+  try {
+    const ModelName name = parseModelName(j.at("model").get<std::string>());
+    const auto& g = j.at("grid");
+    WavelengthGrid grid{g.at("start_nm").get<double>(), g.at("step_nm").get<double>(),
+                        g.at("count").get<int>()};
+    validate(grid);
+    const std::string variant = j.value("variant", "");
+    const Eigen::MatrixXd to_xyz = matrixFromJson(j.at("to_xyz"), source + ": to_xyz");
+    const Eigen::MatrixXd basis = matrixFromJson(j.at("basis"), source + ": basis");
+    const int k = name.kind == ModelKind::kLinear ? static_cast<int>(basis.cols()) : name.k;
+    if (to_xyz.rows() != 3 || to_xyz.cols() != k)
+      throw Error(fmt::format("{}: to_xyz is {}×{}, expected 3×{}", source, to_xyz.rows(),
+                              to_xyz.cols(), k));
+    if (name.kind == ModelKind::kLinear) {
+      if (basis.rows() != grid.count || basis.cols() != name.k)
+        throw Error(fmt::format("{}: basis is {}×{}, expected {}×{}", source, basis.rows(),
+                                basis.cols(), grid.count, name.k));
+      return std::make_unique<LinearModel>(grid, basis, to_xyz);
+    }
+    const Eigen::MatrixXd projection = matrixFromJson(j.at("projection"), source + ": projection");
+    if (projection.rows() != name.k || projection.cols() != grid.count)
+      throw Error(fmt::format("{}: projection is {}×{}, expected {}×{}", source, projection.rows(),
+                              projection.cols(), name.k, grid.count));
+    return std::make_unique<ComponentwiseModel>(name.kind, variant, grid, projection, to_xyz,
+                                                basis);
+  } catch (const nlohmann::json::exception& e) {
+    throw Error(fmt::format("{}: not a colour model: {}", source, e.what()));
+  }
+}
+
+void saveModel(const ColourModel& model, const std::string& path) {
+  std::ofstream out(path);
+  if (!out) throw Error(fmt::format("{}: cannot write colour model", path));
+  out << model.toJson().dump(1) << "\n";
+  if (!out) throw Error(fmt::format("{}: write failed", path));
+}
+
+std::unique_ptr<ColourModel> loadModel(const std::string& path) {
+  std::ifstream in(path);
+  if (!in) throw Error(fmt::format("{}: cannot open colour model", path));
+  nlohmann::json j;
+  try {
+    in >> j;
+  } catch (const nlohmann::json::exception& e) {
+    throw Error(fmt::format("{}: invalid JSON: {}", path, e.what()));
+  }
+  return modelFromJson(j, path);
+}
+
+}  // namespace svr

@@ -1,0 +1,37 @@
+#pragma once
+// A colour model whose products are componentwise: coefficients c = P·s (P is k×n) and
+// XYZ = toXyz·c. This one type serves rgb, spectral:n (band means) and factor:k (a sharpened
+// basis B with P = B⁺), so every renderer kernel has one contract.
+
+#include "spectral/colorimetry.h"
+#include "spectral/colour_model.h"
+
+namespace svr {
+
+class ComponentwiseModel final : public ColourModel {
+ public:
+  // basis: n×k spectra the coefficients weigh (for reconstruction and for the record; may be
+  // empty for rgb, which has no spectral basis).
+  ComponentwiseModel(ModelKind kind, std::string variant, WavelengthGrid grid,
+                     Eigen::MatrixXd projection, XyzMatrix to_xyz, Eigen::MatrixXd basis);
+
+  bool componentwise() const override { return true; }
+  Eigen::VectorXd project(const Spectrum& s) const override;
+  Eigen::MatrixXd interaction(const Spectrum& s) const override;
+  Eigen::MatrixXd lightMatrix(const Eigen::VectorXd& light) const override;
+  nlohmann::json toJson() const override;
+
+  const Eigen::MatrixXd& projection() const { return projection_; }
+  const Eigen::MatrixXd& basis() const { return basis_; }
+
+ private:
+  Eigen::MatrixXd projection_;  // k×n
+  Eigen::MatrixXd basis_;       // n×k, or empty
+};
+
+// Linear sRGB of the spectrum (reflectance under E), scaled so flat white is (1, 1, 1).
+std::unique_ptr<ComponentwiseModel> makeRgbModel(const Observer& observer);
+// n contiguous equal bands of the grid, band means; n = grid size is exact up to sampling.
+std::unique_ptr<ComponentwiseModel> makeSpectralModel(const Observer& observer, int n);
+
+}  // namespace svr

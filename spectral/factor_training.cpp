@@ -1,0 +1,394 @@
+#include "spectral/factor_training.h"
+
+#include <fmt/format.h>
+
+#include <Eigen/Dense>
+#include <algorithm>
+#include <cmath>
+#include <optional>
+#include <random>
+
+#include "spectral/error.h"
+
+namespace svr {
+
+Spectrum weakAbsorber(const Spectrum& reflectance) {
+  return Spectrum(reflectance.grid(),
+                  (0.97 + 0.03 * reflectance.values().array()).matrix());
+}
+
+std::vector<int> shuffledIndices(int count, unsigned seed) {
+  std::vector<int> idx(count);
+  for (int i = 0; i < count; ++i) idx[i] = i;
+  std::mt19937 rng(seed);
+  for (int i = count - 1; i > 0; --i) {
+    const int j = static_cast<int>(rng() % static_cast<unsigned>(i + 1));
+    std::swap(idx[i], idx[j]);
+  }
+  return idx;
+}
+
+std::vector<int> partnerIndices(int count, unsigned seed) {
+  std::vector<int> partner(count, 0);
+  if (count < 2) return partner;
+  std::mt19937 rng(seed);
+  for (int i = 0; i < count; ++i) {
+    const int p = static_cast<int>(rng() % static_cast<unsigned>(count - 1));
+    partner[i] = p + (p >= i ? 1 : 0);
+  }
+  return partner;
+}
+
+std::string toString(FactorVariant v) {
+  switch (v) {
+    case FactorVariant::kPca: return "pca";
+    case FactorVariant::kSharp: return "sharp";
+    case FactorVariant::kRefined: return "refined";
+  }
+  return "?";
+}
+
+FactorVariant parseFactorVariant(const std::string& text) {
+  for (auto v : {FactorVariant::kPca, FactorVariant::kSharp, FactorVariant::kRefined})
+    if (toString(v) == text) return v;
+  throw Error(fmt::format("unknown factor variant '{}'; expected pca, sharp or refined", text));
+}
+
+namespace {
+
+void checkSet(const TrainingSet& set) {
+  if (set.lights.empty() || set.reflectances.empty())
+    throw Error(fmt::format("training set needs lights and reflectances, got {} and {}",
+                            set.lights.size(), set.reflectances.size()));
+  if (!set.absorbers.empty() && set.absorbers.size() != set.reflectances.size())
+    throw Error(fmt::format("training set: {} absorbers for {} reflectances (they are paired)",
+                            set.absorbers.size(), set.reflectances.size()));
+  for (const auto* list : {&set.lights, &set.reflectances, &set.absorbers})
+    for (const auto& s : *list)
+      if (!s.allFinite()) throw Error("training set holds a non-finite spectrum");
+}
+
+// Sample-index interval of every grid sample: borders are k-1 increasing indices in 1..n-1.
+std::vector<int> equalBorders(int n, int k) {
+  std::vector<int> b;
+  for (int i = 1; i < k; ++i) b.push_back(static_cast<int>(std::lround(double(i) * n / k)));
+  return b;
+}
+
+// T whose column i is the top eigenvector of B0ᵀ Λ_i B0 (Λ_i masks interval i).
+Eigen::MatrixXd sharpeningTransform(const Eigen::MatrixXd& b0, const std::vector<int>& borders) {
+  const int n = static_cast<int>(b0.rows()), k = static_cast<int>(b0.cols());
+  Eigen::MatrixXd t(k, k);
+  for (int i = 0; i < k; ++i) {
+    const int lo = i == 0 ? 0 : borders[i - 1];
+    const int hi = i == k - 1 ? n : borders[i];
+    const Eigen::MatrixXd part = b0.middleRows(lo, hi - lo);
+    Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eig(part.transpose() * part);
+    Eigen::VectorXd v = eig.eigenvectors().col(k - 1);
+    if ((part * v).sum() < 0) v = -v;  // sharpened vectors positive on their own interval
+    t.col(i) = v;
+  }
+  return t;
+}
+
+// The product error of the white-normalised model B = B0·T·diag(w) over the training set.
+class ProductObjective {
+ public:
+  static constexpr int kMaxSamples = 1000;  // refinement uses an evenly spaced subset
+  static constexpr double kCoeffLo = -1.0, kCoeffHi = 3.0;  // bounds on reflectance coefficients
+  static constexpr double kBoundWeight = 1.0;
+
+  ProductObjective(const Observer& observer, const TrainingSet& set, const Eigen::MatrixXd& b0)
+      : k_(static_cast<int>(b0.cols())), depths_(set.depths) {
+    const int n_all = static_cast<int>(set.reflectances.size());
+    const int n = std::min(n_all, kMaxSamples);
+    const int nl = static_cast<int>(set.lights.size());
+    const int n_grid = static_cast<int>(b0.rows());
+    Eigen::MatrixXd lights(n_grid, nl), refl(n_grid, n), absorb(n_grid, n);
+    for (int l = 0; l < nl; ++l) lights.col(l) = set.lights[l].values();
+    for (int j = 0; j < n; ++j) {
+      const int src = static_cast<int>(static_cast<long>(j) * n_all / n);
+      refl.col(j) = set.reflectances[src].values();
+      absorb.col(j) = set.absorbers.empty() ? set.reflectances[src].values()
+                                            : set.absorbers[src].values();
+    }
+    if (set.absorbers.empty()) depths_.clear();
+    const auto& cmf = observer.weightedCmf();
+    al_ = b0.transpose() * lights;
+    ar_ = b0.transpose() * refl;
+    at_ = b0.transpose() * absorb;
+    a1_ = b0.transpose() * Eigen::VectorXd::Ones(n_grid);
+    cb_ = cmf.transpose() * b0;
+    const int cases = 1 + static_cast<int>(depths_.size());
+    exact_.resize(3, nl * n * cases);
+    scale_.resize(nl * n * cases);
+    for (int c = 0; c < cases; ++c) {
+      Eigen::MatrixXd filt = refl;
+      Eigen::MatrixXd trans = Eigen::MatrixXd::Ones(n_grid, n);
+      if (c > 0) {
+        trans = absorb.array().pow(depths_[c - 1]).matrix();
+        filt = refl.cwiseProduct(trans);
+      }
+      for (int l = 0; l < nl; ++l)
+        for (int j = 0; j < n; ++j) {
+          const int idx = (c * nl + l) * n + j;
+          // Exposure-normalised: scaled so the light filtered by t^m has Y = 1.
+          const double y = cmf.col(1).dot(lights.col(l).cwiseProduct(trans.col(j)));
+          scale_[idx] = c == 0 ? 1.0 : 1.0 / y;
+          exact_.col(idx) = cmf.transpose() * lights.col(l).cwiseProduct(filt.col(j)) * scale_[idx];
+        }
+    }
+    nl_ = nl;
+    n_ = n;
+  }
+
+  int parameters() const { return k_ * k_; }
+  int residuals() const { return static_cast<int>(exact_.cols()) * 3 + 2 * k_ * n_; }
+
+  // Residual vector for T = theta (k×k, column-major); nullopt where the model is singular or
+  // not finite, which the optimiser treats as an infinitely bad point.
+  std::optional<Eigen::VectorXd> operator()(const Eigen::VectorXd& theta) const {
+    const Eigen::Map<const Eigen::MatrixXd> t(theta.data(), k_, k_);
+    Eigen::PartialPivLU<Eigen::MatrixXd> lu(t);
+    if (!(std::abs(lu.determinant()) > 1e-14)) return std::nullopt;
+    const Eigen::VectorXd w = lu.solve(a1_);
+    if (!w.allFinite() || w.cwiseAbs().minCoeff() < 1e-9) return std::nullopt;
+    const Eigen::VectorXd inv_w = w.cwiseInverse();
+    const Eigen::MatrixXd cl = inv_w.asDiagonal() * lu.solve(al_);
+    const Eigen::MatrixXd cr = inv_w.asDiagonal() * lu.solve(ar_);
+    const Eigen::MatrixXd ct = inv_w.asDiagonal() * lu.solve(at_);
+    const Eigen::MatrixXd m = cb_ * t * w.asDiagonal();
+    Eigen::VectorXd r(residuals());
+    int row = 0;
+    const int cases = 1 + static_cast<int>(depths_.size());
+    for (int c = 0; c < cases; ++c) {
+      const Eigen::MatrixXd filt =
+          c == 0 ? cr : Eigen::MatrixXd(cr.cwiseProduct(ct.array().pow(depths_[c - 1]).matrix()));
+      for (int l = 0; l < nl_; ++l) {
+        const Eigen::MatrixXd pred = m * (cl.col(l).asDiagonal() * filt);  // 3×n
+        for (int j = 0; j < n_; ++j) {
+          const int idx = (c * nl_ + l) * n_ + j;
+          r.segment<3>(row) = pred.col(j) * scale_[idx] - exact_.col(idx);
+          row += 3;
+        }
+      }
+    }
+    auto hinge = [](double v) {
+      return v < kCoeffLo ? kCoeffLo - v : (v > kCoeffHi ? v - kCoeffHi : 0.0);
+    };
+    for (const Eigen::MatrixXd* coeffs : {&cr, &ct})
+      for (Eigen::Index i = 0; i < coeffs->size(); ++i)
+        r[row++] = kBoundWeight * hinge((*coeffs)(i));
+    if (!r.allFinite()) return std::nullopt;
+    return r;
+  }
+
+  double value(const Eigen::MatrixXd& t) const {
+    const Eigen::VectorXd theta = Eigen::Map<const Eigen::VectorXd>(t.data(), t.size());
+    const auto r = (*this)(theta);
+    return r ? r->squaredNorm() : std::numeric_limits<double>::infinity();
+  }
+
+ private:
+  int k_, nl_ = 0, n_ = 0;
+  std::vector<int> depths_;
+  Eigen::MatrixXd al_, ar_, at_, cb_, exact_;
+  Eigen::VectorXd a1_, scale_;
+};
+
+// Levenberg–Marquardt with a forward-difference Jacobian. Hand-written rather than Eigen's
+// unsupported LevenbergMarquardt because two things matter here: trial points where the model
+// is singular or overflows must be rejected (not differentiated), and the column-scale gauge
+// of T (white normalisation makes the objective blind to it) is removed after every step.
+struct LmResult {
+  Eigen::MatrixXd t;
+  double start, final;
+  int iterations;
+};
+
+LmResult levenbergMarquardt(const ProductObjective& objective, Eigen::MatrixXd t0,
+                            int max_iterations) {
+  const int k = static_cast<int>(t0.rows());
+  const int np = k * k;
+  Eigen::VectorXd theta = Eigen::Map<Eigen::VectorXd>(t0.data(), np);
+  auto r = objective(theta);
+  if (!r) return {t0, INFINITY, INFINITY, 0};
+  double f = r->squaredNorm();
+  const double f0 = f;
+  double lambda = 1e-3;
+  int it = 0;
+  Eigen::MatrixXd jac(r->size(), np);
+  for (; it < max_iterations; ++it) {
+#pragma omp parallel for schedule(dynamic)
+    for (int p = 0; p < np; ++p) {
+      Eigen::VectorXd shifted = theta;
+      const double h = 1e-7 * std::max(1.0, std::abs(theta[p]));
+      shifted[p] += h;
+      auto rp = objective(shifted);
+      if (!rp) {
+        shifted[p] = theta[p] - h;
+        rp = objective(shifted);
+        jac.col(p) = rp ? Eigen::VectorXd((*r - *rp) / h) : Eigen::VectorXd::Zero(r->size());
+      } else {
+        jac.col(p) = (*rp - *r) / h;
+      }
+    }
+    const Eigen::MatrixXd h = jac.transpose() * jac;
+    const Eigen::VectorXd g = jac.transpose() * *r;
+    const double tiny = 1e-12 * h.trace() / np;
+    bool improved = false;
+    double f_prev = f;
+    for (int attempt = 0; attempt < 12; ++attempt) {
+      Eigen::MatrixXd a = h;
+      a.diagonal() += lambda * (h.diagonal().array() + tiny).matrix();
+      const Eigen::VectorXd step = -a.ldlt().solve(g);
+      Eigen::MatrixXd tn = Eigen::Map<const Eigen::MatrixXd>(theta.data(), k, k) +
+                           Eigen::Map<const Eigen::MatrixXd>(step.data(), k, k);
+      tn.colwise().normalize();  // remove the column-scale gauge
+      Eigen::VectorXd theta_n = Eigen::Map<Eigen::VectorXd>(tn.data(), np);
+      auto rn = objective(theta_n);
+      if (rn && rn->squaredNorm() < f) {
+        theta = theta_n;
+        r = rn;
+        f = rn->squaredNorm();
+        lambda = std::max(lambda / 3.0, 1e-9);
+        improved = true;
+        break;
+      }
+      lambda *= 10.0;
+    }
+    if (!improved || f_prev - f < 1e-7 * f_prev) {
+      ++it;
+      break;
+    }
+  }
+  return {Eigen::Map<Eigen::MatrixXd>(theta.data(), k, k), f0, f, it};
+}
+
+// Coordinate search over the interval borders (whole samples), T from the interval
+// eigenvectors; returns the best borders found.
+std::vector<int> searchBorders(const ProductObjective& objective, const Eigen::MatrixXd& b0,
+                               std::vector<int> borders, double& best) {
+  const int n = static_cast<int>(b0.rows());
+  best = objective.value(sharpeningTransform(b0, borders));
+  for (int sweep = 0; sweep < 8; ++sweep) {
+    bool improved = false;
+    for (size_t i = 0; i < borders.size(); ++i) {
+      const int lo = i == 0 ? 1 : borders[i - 1] + 1;
+      const int hi = i + 1 == borders.size() ? n - 1 : borders[i + 1] - 1;
+      for (int d : {-8, -4, -2, -1, 1, 2, 4, 8}) {
+        const int c = borders[i] + d;
+        if (c < lo || c > hi) continue;
+        auto trial = borders;
+        trial[i] = c;
+        const double v = objective.value(sharpeningTransform(b0, trial));
+        if (v < best) best = v, borders = trial, improved = true;
+      }
+    }
+    if (!improved) break;
+  }
+  return borders;
+}
+
+std::unique_ptr<ComponentwiseModel> modelFromTransform(const Observer& observer,
+                                                       const Eigen::MatrixXd& b0,
+                                                       const Eigen::MatrixXd& t,
+                                                       FactorVariant variant, double* white_min) {
+  Eigen::MatrixXd basis = b0 * t;
+  Eigen::MatrixXd projection = t.partialPivLu().solve(b0.transpose());  // = B⁺ (B0 orthonormal)
+  const Eigen::VectorXd w = projection.rowwise().sum();
+  if (white_min) *white_min = w.cwiseAbs().minCoeff();
+  basis = basis * w.asDiagonal();
+  projection = w.cwiseInverse().asDiagonal() * projection;
+  XyzMatrix to_xyz = observer.weightedCmf().transpose() * basis;
+  return std::make_unique<ComponentwiseModel>(ModelKind::kFactor, toString(variant),
+                                              observer.grid(), projection, to_xyz, basis);
+}
+
+}  // namespace
+
+Eigen::MatrixXd principalBasis(const TrainingSet& set, int k) {
+  checkSet(set);
+  const int n = static_cast<int>(set.lights.front().size());
+  if (k < 1 || k > n) throw Error(fmt::format("basis size {} is outside 1..{}", k, n));
+  // Eigenvectors of the n×n second-moment matrix = left singular vectors of the signals.
+  Eigen::MatrixXd moment = Eigen::MatrixXd::Zero(n, n);
+  for (const auto& light : set.lights) {
+    Eigen::MatrixXd signals(n, set.reflectances.size());
+    for (size_t j = 0; j < set.reflectances.size(); ++j)
+      signals.col(j) = light.values().cwiseProduct(set.reflectances[j].values());
+    moment.noalias() += signals * signals.transpose();
+  }
+  Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eig(moment);
+  Eigen::MatrixXd basis(n, k);
+  for (int i = 0; i < k; ++i) {
+    Eigen::VectorXd v = eig.eigenvectors().col(n - 1 - i);
+    if (v.sum() < 0) v = -v;  // sign convention: positive mean
+    basis.col(i) = v;
+  }
+  return basis;
+}
+
+std::unique_ptr<ComponentwiseModel> trainFactorModel(const Observer& observer,
+                                                     const TrainingSet& set, int k,
+                                                     FactorVariant variant,
+                                                     FactorTrainingReport* report) {
+  const Eigen::MatrixXd b0 = principalBasis(set, k);
+  const int n = static_cast<int>(b0.rows());
+  FactorTrainingReport local;
+  FactorTrainingReport& rep = report ? *report : local;
+  auto bordersNm = [&](const std::vector<int>& b) {
+    std::vector<double> nm;
+    for (int i : b) nm.push_back(observer.grid().wavelength(i) - 0.5 * observer.grid().step_nm);
+    return nm;
+  };
+
+  if (variant == FactorVariant::kPca) {
+    XyzMatrix to_xyz = observer.weightedCmf().transpose() * b0;
+    Eigen::MatrixXd projection = b0.transpose();
+    return std::make_unique<ComponentwiseModel>(ModelKind::kFactor, toString(variant),
+                                                observer.grid(), projection, to_xyz, b0);
+  }
+  const std::vector<int> equal = equalBorders(n, k);
+  const Eigen::MatrixXd t_equal = sharpeningTransform(b0, equal);
+  if (variant == FactorVariant::kSharp) {
+    rep.borders_nm = bordersNm(equal);
+    return modelFromTransform(observer, b0, t_equal, variant, &rep.white_min_abs);
+  }
+
+  const ProductObjective objective(observer, set, b0);
+  double searched_value = INFINITY;
+  const std::vector<int> searched = searchBorders(objective, b0, equal, searched_value);
+  // Start from whichever closed-form sharpening is better (and finite); fall back to the
+  // unsharpened basis, which is always finite.
+  struct Start {
+    std::string name;
+    Eigen::MatrixXd t;
+    std::vector<int> borders;
+  };
+  std::vector<Start> starts{{"sharp", t_equal, equal},
+                            {"borders", sharpeningTransform(b0, searched), searched},
+                            {"pca", Eigen::MatrixXd::Identity(k, k), {}}};
+  const Start* best = nullptr;
+  double best_value = INFINITY;
+  for (const auto& s : starts) {
+    const double v = objective.value(s.t);
+    if (v < best_value) best_value = v, best = &s;
+  }
+  if (!best)
+    throw Error(fmt::format("factor:{}: no sharpening of the training set is finite", k));
+  const LmResult lm = levenbergMarquardt(objective, best->t, 400);
+  rep.start = best->name;
+  rep.borders_nm = bordersNm(best->borders);
+  rep.objective_start = lm.start;
+  rep.objective_final = lm.final;
+  rep.iterations = lm.iterations;
+  return modelFromTransform(observer, b0, lm.t, variant, &rep.white_min_abs);
+}
+
+std::unique_ptr<LinearModel> trainLinearModel(const Observer& observer, const TrainingSet& set,
+                                              int k) {
+  return std::make_unique<LinearModel>(observer, principalBasis(set, k));
+}
+
+}  // namespace svr

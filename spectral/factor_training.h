@@ -1,0 +1,62 @@
+#pragma once
+// Training the factor model (Drew & Finlayson; Bergner et al. 2009 §2.2–2.3, DESIGN §4):
+// uncentred PCA of colour signals, interval sharpening, then refinement of the sharpening
+// transform T (and of the interval borders) against the product error on the training set,
+// single products *and* deep-absorption products, with the coefficients kept bounded.
+// Refinement is what makes the model stable: closed-form sharpening alone can put a white
+// coefficient near zero and blow every coefficient up.
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "spectral/colorimetry.h"
+#include "spectral/componentwise_model.h"
+#include "spectral/linear_model.h"
+
+namespace svr {
+
+struct TrainingSet {
+  std::vector<Spectrum> lights;        // each at unit luminance (Observer::unitLuminance)
+  std::vector<Spectrum> reflectances;  // colour signals are every light × every reflectance
+  // Per-step transmittances, paired with reflectances (same count): the deep products are
+  // light × reflectance[j] × absorber[j]^m for every m in depths.
+  std::vector<Spectrum> absorbers;
+  std::vector<int> depths{16, 64, 256};
+};
+
+// The deep-absorption absorber of the DESIGN: t = 0.97 + 0.03·r, with r a different chip.
+Spectrum weakAbsorber(const Spectrum& reflectance);
+// For each j, a partner index != j drawn with the given seed (a fixed, portable generator).
+std::vector<int> partnerIndices(int count, unsigned seed);
+// Deterministic permutation of 0..count-1 (Fisher–Yates over std::mt19937).
+std::vector<int> shuffledIndices(int count, unsigned seed);
+
+enum class FactorVariant {
+  kPca,      // unsharpened PCA basis: the contrast every sharpened variant must beat
+  kSharp,    // closed-form equal-interval sharpening, white-normalised (known unstable)
+  kRefined,  // the product model: border search + Levenberg–Marquardt on single and deep products
+};
+std::string toString(FactorVariant v);
+FactorVariant parseFactorVariant(const std::string& text);
+
+struct FactorTrainingReport {
+  std::string start;             // starting sharpening the refinement began from
+  double objective_start = 0.0;  // training objective (sum of squared XYZ residuals)
+  double objective_final = 0.0;
+  int iterations = 0;
+  std::vector<double> borders_nm;  // interval borders of the sharpening start
+  double white_min_abs = 0.0;      // smallest |white coefficient| before normalisation
+};
+
+// n×k orthonormal basis: the first k left singular vectors of the colour signals.
+Eigen::MatrixXd principalBasis(const TrainingSet& set, int k);
+
+std::unique_ptr<ComponentwiseModel> trainFactorModel(const Observer& observer,
+                                                     const TrainingSet& set, int k,
+                                                     FactorVariant variant,
+                                                     FactorTrainingReport* report = nullptr);
+std::unique_ptr<LinearModel> trainLinearModel(const Observer& observer, const TrainingSet& set,
+                                              int k);
+
+}  // namespace svr

@@ -1,0 +1,31 @@
+#pragma once
+// A palette: the lights and materials a scene uses, each a spectrum (by library name, from a
+// CSV file, or inline samples). "Model no more than a scene needs" trains the factor model on a
+// palette's own colour signals. The design-tool issue extends this file with targets.
+//
+// JSON: {"lights": [SPEC, …], "materials": [SPEC, …]} where SPEC is
+//   "D65"                                   a library name
+//   {"name": "n", "library": "D65"}         the same, renamed
+//   {"name": "n", "csv": "file.csv", "column": "col"}   relative to the palette file
+//   {"name": "n", "wavelengths": [..], "values": [..]}  inline samples (any increasing grid)
+
+#include <string>
+#include <vector>
+
+#include "spectral/spectrum_library.h"
+
+namespace svr {
+
+struct NamedSpectrum {
+  std::string name;
+  Spectrum spectrum;
+};
+
+struct Palette {
+  std::vector<NamedSpectrum> lights;
+  std::vector<NamedSpectrum> materials;  // reflectances
+};
+
+Palette loadPalette(const std::string& path, const SpectrumLibrary& library);
+
+}  // namespace svr

@@ -1,0 +1,40 @@
+#pragma once
+// The post-illumination inner loop: out[x] = M · (plane_0[x], …, plane_{P-1}[x]) for a 3×P
+// matrix M, written as linear float RGB or as 8-bit sRGB. Compiled for every fixed plane count
+// in one list (relight_kernel_body.inc) plus a dynamic path, and for two instruction sets
+// (portable x86-64, and AVX2+F16C+FMA); selectRelightKernel picks one at run time.
+// Kernels neither throw nor allocate; they report the first non-finite pixel instead.
+
+#include <cstddef>
+#include <cstdint>
+
+#include "spectral/light_independent_image.h"
+
+namespace svr {
+
+enum class RelitEncoding { kLinearFloat, kSrgb8 };
+
+struct RelightJob {
+  const void* const* planes = nullptr;  // plane_count pointers, float or half per storage
+  int plane_count = 0;
+  const float* matrix = nullptr;        // 3×plane_count, row-major
+  std::size_t begin = 0, end = 0;       // pixel range
+  float* out_float = nullptr;           // interleaved RGB (kLinearFloat)
+  std::uint8_t* out_srgb = nullptr;     // interleaved RGB (kSrgb8)
+  const std::uint8_t* srgb_lut = nullptr;  // kSrgbLutSize entries over linear [0, 1]
+};
+
+inline constexpr int kSrgbLutSize = 1 << 14;
+
+// Returns the index of the first pixel with a non-finite result, or -1.
+using RelightFn = long (*)(const RelightJob&);
+
+struct RelightKernelChoice {
+  RelightFn fn;
+  const char* isa;    // "avx2" or "x86-64"
+  bool fixed_width;   // compiled for this plane count, not the dynamic path
+};
+RelightKernelChoice selectRelightKernel(int plane_count, SampleStorage storage,
+                                        RelitEncoding encoding);
+
+}  // namespace svr
