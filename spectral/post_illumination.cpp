@@ -63,7 +63,7 @@ Eigen::MatrixXd PostIlluminator::foldedMatrix(const LightIndependentImage& image
 }
 
 const char* PostIlluminator::kernelIsa(const LightIndependentImage& image) const {
-  return selectRelightKernel(image.planes(), image.storage(), RelitEncoding::kLinearFloat).isa;
+  return selectRelightKernel(image.planes(), image.storage(), RelitEncoding::kLinearFloat, force_).isa;
 }
 
 void PostIlluminator::run(const LightIndependentImage& image, RelitSpace space,
@@ -76,7 +76,7 @@ void PostIlluminator::run(const LightIndependentImage& image, RelitSpace space,
     for (int p = 0; p < planes; ++p) matrix[r * planes + p] = static_cast<float>(folded(r, p));
   std::vector<const void*> plane_ptrs(planes);
   for (int p = 0; p < planes; ++p) plane_ptrs[p] = image.planeData(p);
-  const RelightFn fn = selectRelightKernel(planes, image.storage(), encoding).fn;
+  const RelightFn fn = selectRelightKernel(planes, image.storage(), encoding, force_).fn;
 
   const int rows = image.height();
   const size_t width = static_cast<size_t>(image.width());

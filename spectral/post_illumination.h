@@ -35,6 +35,7 @@ class PostIlluminator {
   // The folded 3×P matrix for an image with these planes (for tests and inspection).
   Eigen::MatrixXd foldedMatrix(const LightIndependentImage& image, RelitSpace space) const;
   const char* kernelIsa(const LightIndependentImage& image) const;
+  void forceKernel(KernelForce force) { force_ = force; }
 
  private:
   void run(const LightIndependentImage& image, RelitSpace space, RelitEncoding encoding,
@@ -43,6 +44,7 @@ class PostIlluminator {
   const ColourModel& model_;
   Eigen::MatrixXd light_matrix_;  // 3 × imageChannels, to XYZ, exposure included
   Eigen::VectorXd background_;
+  KernelForce force_;
   std::array<std::uint8_t, kSrgbLutSize> srgb_lut_;
 };
 

@@ -34,7 +34,13 @@ struct RelightKernelChoice {
   const char* isa;    // "avx2" or "x86-64"
   bool fixed_width;   // compiled for this plane count, not the dynamic path
 };
+// The fastest kernel for this CPU and plane count; tests force the dynamic-width path or the
+// portable instruction set to check that every variant gives the same pixels.
+struct KernelForce {
+  bool dynamic_width = false;
+  bool portable = false;
+};
 RelightKernelChoice selectRelightKernel(int plane_count, SampleStorage storage,
-                                        RelitEncoding encoding);
+                                        RelitEncoding encoding, KernelForce force = {});
 
 }  // namespace svr

@@ -22,14 +22,16 @@ inline void loadHalfChunk(const std::uint16_t* src, float* dst, int n) {
 }  // namespace relight_generic
 
 RelightKernelChoice selectRelightKernel(int planes, SampleStorage storage,
-                                        RelitEncoding encoding) {
-  const bool fixed = planes >= 1 && planes <= 16;
+                                        RelitEncoding encoding, KernelForce force) {
+  const bool fixed = planes >= 1 && planes <= 16 && !force.dynamic_width;
+  const int width = fixed ? planes : 0;  // 0 selects the dynamic path
 #if defined(__x86_64__) || defined(__i386__)
   static const bool avx2 = relight_avx2::compiled() && __builtin_cpu_supports("avx2") &&
                            __builtin_cpu_supports("f16c") && __builtin_cpu_supports("fma");
-  if (avx2) return {relight_avx2::pickKernelAvx2(planes, storage, encoding), "avx2", fixed};
+  if (avx2 && !force.portable)
+    return {relight_avx2::pickKernelAvx2(width, storage, encoding), "avx2", fixed};
 #endif
-  return {relight_generic::pickKernel(planes, storage, encoding), "x86-64", fixed};
+  return {relight_generic::pickKernel(width, storage, encoding), "x86-64", fixed};
 }
 
 }  // namespace svr

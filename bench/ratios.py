@@ -1,0 +1,22 @@
+#!/usr/bin/env python3
+"""Ratios from one Google Benchmark JSON run: relight time / streaming-read time per
+size/k/storage, and frames per second.
+
+  build/release/bench/svr_relight_bench --benchmark_out=relight.json --benchmark_out_format=json
+  python3 bench/ratios.py relight.json
+"""
+import json
+import sys
+
+runs = {b["name"].replace("/real_time", ""): b for b in json.load(open(sys.argv[1]))["benchmarks"]
+        if b.get("run_type", "iteration") == "iteration"}
+print(f"{'config':<18} {'relight fps':>12} {'stream fps':>12} {'relight/stream':>15}  {'GB/s relight':>12}")
+for name, b in runs.items():
+    if not name.startswith("Relight/"):
+        continue
+    cfg = name[len("Relight/"):]
+    s = runs.get("StreamRead/" + cfg)
+    if not s:
+        continue
+    t, ts = b["real_time"], s["real_time"]
+    print(f"{cfg:<18} {1e6 / t:12.0f} {1e6 / ts:12.0f} {t / ts:15.2f}  {b['bytes_per_second'] / 1e9:12.1f}")

@@ -1,0 +1,106 @@
+#include "spectral/factor_training.h"
+
+#include <gtest/gtest.h>
+
+#include "spectral/componentwise_model.h"
+#include "spectral/model_error.h"
+#include "tests/spectral/test_data.h"
+
+namespace svr {
+namespace {
+
+double meanError(const ColourModel& m, const EvaluationSet& set, const std::string& which) {
+  for (const auto& r : evaluateModel(m, test::observer(), set))
+    if (r.evaluation_case == which) return r.stats.mean;
+  return INFINITY;
+}
+
+EvaluationSet trainingAsEvaluation() {
+  const auto& t = test::smallTrainingSet();
+  return {"train", t.lights, t.reflectances, t.absorbers};
+}
+
+TEST(FactorTraining, ReproducesTrainingProductsBetterAsKGrows) {
+  const auto set = trainingAsEvaluation();
+  double previous = INFINITY;
+  for (int k : {3, 5, 7, 9}) {
+    const auto m = trainFactorModel(test::observer(), test::smallTrainingSet(), k,
+                                    FactorVariant::kRefined);
+    const double e = meanError(*m, set, "product");
+    EXPECT_LT(e, previous) << "k=" << k;
+    previous = e;
+  }
+  EXPECT_LT(previous, 1.0);  // k = 9 on its own training set
+}
+
+TEST(FactorTraining, RefinementLowersTheObjectiveAndReportsIt) {
+  FactorTrainingReport report;
+  trainFactorModel(test::observer(), test::smallTrainingSet(), 6, FactorVariant::kRefined, &report);
+  EXPECT_GT(report.iterations, 0);
+  EXPECT_LT(report.objective_final, report.objective_start);
+  EXPECT_EQ(report.borders_nm.size(), 5u);
+  EXPECT_FALSE(report.start.empty());
+}
+
+TEST(FactorTraining, SharpenedBeatsUnsharpenedPca) {
+  const auto set = trainingAsEvaluation();
+  const auto pca = trainFactorModel(test::observer(), test::smallTrainingSet(), 6, FactorVariant::kPca);
+  const auto refined =
+      trainFactorModel(test::observer(), test::smallTrainingSet(), 6, FactorVariant::kRefined);
+  EXPECT_LT(meanError(*refined, set, "product"), meanError(*pca, set, "product"));
+}
+
+TEST(FactorTraining, PrincipalBasisIsOrthonormalWithPositiveMean) {
+  const Eigen::MatrixXd b = principalBasis(test::smallTrainingSet(), 8);
+  EXPECT_TRUE((b.transpose() * b).isIdentity(1e-10));
+  for (int i = 0; i < 8; ++i) EXPECT_GT(b.col(i).sum(), 0.0);
+}
+
+// Every model a renderer may use, k = 3..10, held-out chips: the coefficients of t^256 stay
+// finite and bounded (no blow-up through a near-zero white coefficient), and so does the
+// relit XYZ.
+TEST(ColourModels, StayFiniteAndBoundedUnderDeepAbsorption) {
+  std::vector<Spectrum> held_out;
+  const auto& names = test::library().munsellNames();
+  for (size_t i = 3; i < names.size(); i += 11) held_out.push_back(test::library().get(names[i]));
+  const auto set = makeEvaluationSet(
+      "held-out", unitLights(test::library(), test::observer(), standardLightNames()), held_out, 5);
+  std::vector<std::unique_ptr<ColourModel>> models;
+  models.push_back(makeRgbModel(test::observer()));
+  for (int k = 3; k <= 10; ++k) {
+    models.push_back(makeSpectralModel(test::observer(), k));
+    models.push_back(trainLinearModel(test::observer(), test::smallTrainingSet(), k));
+    models.push_back(
+        trainFactorModel(test::observer(), test::smallTrainingSet(), k, FactorVariant::kRefined));
+  }
+  for (const auto& m : models) {
+    SCOPED_TRACE(m->name() + " " + m->variant());
+    for (size_t j = 0; j < set.absorbers.size(); ++j) {
+      if (m->componentwise()) {
+        const Eigen::ArrayXd t = m->project(set.absorbers[j]).array().pow(256);
+        ASSERT_TRUE(t.allFinite());
+        ASSERT_LE(t.abs().maxCoeff(), 1.5);  // true t^256 lies in [0, 1]
+      }
+    }
+    for (const auto& row : evaluateModel(*m, test::observer(), set)) {
+      EXPECT_TRUE(row.stats.finite) << row.evaluation_case;
+      EXPECT_LT(row.stats.mean, 30.0) << row.evaluation_case;
+    }
+  }
+}
+
+TEST(Sampling, PartnersAreNeverThemselvesAndShuffleIsAPermutation) {
+  const auto p = partnerIndices(100, 1);
+  for (int i = 0; i < 100; ++i) {
+    EXPECT_NE(p[i], i);
+    EXPECT_GE(p[i], 0);
+    EXPECT_LT(p[i], 100);
+  }
+  auto s = shuffledIndices(50, 0);
+  EXPECT_EQ(s, shuffledIndices(50, 0));  // deterministic
+  std::sort(s.begin(), s.end());
+  for (int i = 0; i < 50; ++i) EXPECT_EQ(s[i], i);
+}
+
+}  // namespace
+}  // namespace svr
