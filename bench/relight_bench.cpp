@@ -7,6 +7,7 @@
 #include <fmt/format.h>
 
 #include <cstdint>
+#include <optional>
 #include <random>
 #include <vector>
 
@@ -33,12 +34,14 @@ const Observer& observer() {
   return obs;
 }
 
-void relight(benchmark::State& state, int size, int k, SampleStorage storage, bool srgb8) {
+void relight(benchmark::State& state, int size, int k, SampleStorage storage, bool srgb8,
+            std::optional<KernelIsa> isa) {
   const auto image = makeImage(size, k, storage);
   // The kernel depends only on the plane count; a k-band model gives any k.
   const auto model = makeSpectralModel(observer(), k);
   const auto lib = SpectrumLibrary::load(defaultDataDir(), WavelengthGrid::standard());
   PostIlluminator post(*model);
+  post.forceKernel({.dynamic_width = false, .isa = isa});
   post.setLight(model->project(observer().unitLuminance(lib.get("D65"))));
   std::vector<std::uint8_t> out(3 * image.pixels());
   std::vector<float> out_linear(srgb8 ? 0 : 3 * image.pixels());
@@ -93,11 +96,11 @@ const bool registered = [] {
       for (auto storage : {SampleStorage::kFloat, SampleStorage::kHalf}) {
         const char* type = storage == SampleStorage::kFloat ? "float" : "half";
         benchmark::RegisterBenchmark(fmt::format("Relight/{}/{}/{}", size, k, type).c_str(),
-                                     relight, size, k, storage, true)
+                                     relight, size, k, storage, true, std::nullopt)
             ->UseRealTime()
             ->Unit(benchmark::kMicrosecond);
         benchmark::RegisterBenchmark(fmt::format("RelightLinear/{}/{}/{}", size, k, type).c_str(),
-                                     relight, size, k, storage, false)
+                                     relight, size, k, storage, false, std::nullopt)
             ->UseRealTime()
             ->Unit(benchmark::kMicrosecond);
         benchmark::RegisterBenchmark(fmt::format("StreamRead/{}/{}/{}", size, k, type).c_str(),
@@ -105,6 +108,16 @@ const bool registered = [] {
             ->UseRealTime()
             ->Unit(benchmark::kMicrosecond);
       }
+  // The same frame through every instruction set this CPU has, to choose between them.
+  for (KernelIsa isa : availableKernelIsas())
+    for (auto storage : {SampleStorage::kFloat, SampleStorage::kHalf})
+      benchmark::RegisterBenchmark(
+          fmt::format("RelightIsa/{}/800/6/{}", toString(isa),
+                      storage == SampleStorage::kFloat ? "float" : "half")
+              .c_str(),
+          relight, 800, 6, storage, true, std::optional<KernelIsa>(isa))
+          ->UseRealTime()
+          ->Unit(benchmark::kMicrosecond);
   return true;
 }();
 

@@ -63,7 +63,7 @@ Eigen::MatrixXd PostIlluminator::foldedMatrix(const LightIndependentImage& image
 }
 
 const char* PostIlluminator::kernelIsa(const LightIndependentImage& image) const {
-  return selectRelightKernel(image.planes(), image.storage(), RelitEncoding::kLinearFloat, force_).isa;
+  return toString(selectRelightKernel(image.planes(), image.storage(), RelitEncoding::kLinearFloat, force_).isa);
 }
 
 void PostIlluminator::run(const LightIndependentImage& image, RelitSpace space,

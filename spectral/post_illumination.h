@@ -45,7 +45,7 @@ class PostIlluminator {
   Eigen::MatrixXd light_matrix_;  // 3 × imageChannels, to XYZ, exposure included
   Eigen::VectorXd background_;
   KernelForce force_;
-  std::array<std::uint8_t, kSrgbLutSize> srgb_lut_;
+  std::array<std::uint8_t, kSrgbLutSize + kSrgbLutPadding> srgb_lut_{};
 };
 
 }  // namespace svr
