@@ -14,6 +14,7 @@ struct ModelErrorOptions {
   std::string palette;                    // palette JSON: train on its own lights × materials
   std::string json_path;
   int k_min = 3, k_max = 10;
+  bool contrast = false;  // also the closed-form sharpening, to show its instability
   bool quiet = false;
 };
 

@@ -29,6 +29,8 @@ int main(int argc, char** argv) {
   model_error->add_option("--json", me.json_path, "write every row as JSON to this file");
   model_error->add_option("--kmin", me.k_min, "smallest k")->capture_default_str();
   model_error->add_option("--kmax", me.k_max, "largest k")->capture_default_str();
+  model_error->add_flag("--contrast", me.contrast,
+                        "also show closed-form (unrefined) sharpening, which is unstable");
   model_error->add_flag("-q,--quiet", me.quiet, "no progress bar");
   model_error->callback([&] {
     me.data_dir = data_dir;

@@ -3,11 +3,8 @@
 // CSV file, or inline samples). "Model no more than a scene needs" trains the factor model on a
 // palette's own colour signals. The design-tool issue extends this file with targets.
 //
-// JSON: {"lights": [SPEC, …], "materials": [SPEC, …]} where SPEC is
-//   "D65"                                   a library name
-//   {"name": "n", "library": "D65"}         the same, renamed
-//   {"name": "n", "csv": "file.csv", "column": "col"}   relative to the palette file
-//   {"name": "n", "wavelengths": [..], "values": [..]}  inline samples (any increasing grid)
+// JSON: {"lights": [SPEC, …], "materials": [SPEC, …]} where SPEC is a spectrum in the form of
+// spectrum_spec.h; objects also give a "name" (a library name is its own name).
 
 #include <string>
 #include <vector>

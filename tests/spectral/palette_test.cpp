@@ -46,10 +46,10 @@ TEST(Palette, ErrorsNameFileKeyAndValue) {
   EXPECT_NE(errorOf(R"({"lights": ["D65"], "materials": ["nope"]})").find("unknown spectrum 'nope'"),
             std::string::npos);
   EXPECT_NE(errorOf(R"({"lights": [], "materials": ["ColorChecker/red"]})")
-                .find("'lights' must be a non-empty array"),
+                .find("svr_bad_palette.json: lights: must be a non-empty array"),
             std::string::npos);
   EXPECT_NE(errorOf(R"({"lights": ["D65"], "materials": [{"name": "x", "colour": 1}]})")
-                .find("materials[0]: unknown key 'colour'"),
+                .find("svr_bad_palette.json: unknown key 'materials[0].colour'"),
             std::string::npos);
   EXPECT_NE(errorOf("{not json").find("invalid JSON"), std::string::npos);
   EXPECT_NE(errorOf(R"({"lights": ["D65"], "materials": [{"name": "x", "wavelengths": [400, 700],
