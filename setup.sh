@@ -9,7 +9,7 @@ PACKAGES=(
   libosmesa6-dev libopenimageio-dev openimageio-tools
   libgtest-dev libgmock-dev libbenchmark-dev
   libcli11-dev nlohmann-json3-dev libfmt-dev
-  zlib1g-dev libteem-dev
+  zlib1g-dev libteem-dev libssl-dev
   python3-matplotlib python3-numpy
 )
 

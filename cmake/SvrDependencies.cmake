@@ -34,6 +34,8 @@ endif()
 
 if(SVR_BUILD_TESTS)
   find_package(GTest REQUIRED)
+  # SHA-256 of volume payloads, checked against the checksums in data/volumes/*.nhdr.
+  find_package(OpenSSL REQUIRED COMPONENTS Crypto)
 endif()
 if(SVR_BUILD_BENCH)
   find_package(benchmark REQUIRED)

@@ -1,0 +1,22 @@
+#pragma once
+// `svr info FILE`: what a volume file holds (layout, spacing, world box, value range, memory,
+// histogram), to check a file before rendering it.
+
+#include <cstdint>
+#include <optional>
+#include <string>
+
+#include "renderers/core/volume_io.h"
+
+namespace svr {
+
+struct InfoOptions {
+  std::string path;
+  std::optional<RawLayout> raw;  // for headerless files
+  std::uint64_t memory_budget = defaultMemoryBudget();
+};
+
+// Prints describeVolume to stdout; returns the exit code. Throws svr::Error for bad files.
+int runInfo(const InfoOptions& options);
+
+}  // namespace svr

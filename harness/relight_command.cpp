@@ -1,0 +1,78 @@
+#include "harness/relight_command.h"
+
+#include <fmt/format.h>
+
+#include <cmath>
+#include <filesystem>
+#include <map>
+#include <sstream>
+
+#include "harness/image_files.h"
+#include "spectral/colorimetry.h"
+#include "spectral/error.h"
+#include "spectral/light_mixer.h"
+#include "spectral/post_illumination.h"
+#include "spectral/spectrum_library.h"
+
+namespace svr {
+namespace fs = std::filesystem;
+
+int runRelight(const RelightOptions& o) {
+  if (o.light.empty() == o.mix.empty())
+    throw Error("relight: give exactly one of --light NAME or --mix NAME:W,NAME:W");
+  if (!std::isfinite(o.exposure) || o.exposure <= 0)
+    throw Error(fmt::format("relight: --exposure {} must be > 0", o.exposure));
+  std::map<std::string, std::string> attributes;
+  const LightIndependentImage image = readLightIndependentExr(o.image, &attributes);
+  std::string model_path = o.model;
+  if (model_path.empty()) {
+    if (!attributes.count("model_file"))
+      throw Error(fmt::format("{}: names no model file; pass --model", o.image));
+    model_path = (fs::path(o.image).parent_path() / attributes["model_file"]).string();
+  }
+  const auto model = loadModel(model_path);
+  const WavelengthGrid grid = model->grid();
+  const auto library = SpectrumLibrary::load(o.data_dir, grid);
+  const auto observer = Observer::cie1931(o.data_dir, grid);
+  auto coeffs = [&](const std::string& name) {
+    return model->project(observer.unitLuminance(library.get(name)));
+  };
+  Eigen::VectorXd light;
+  if (!o.light.empty()) {
+    light = coeffs(o.light);
+  } else {
+    std::vector<Eigen::VectorXd> lights;
+    std::vector<double> weights;
+    std::stringstream ss(o.mix);
+    std::string item;
+    while (std::getline(ss, item, ',')) {
+      const auto colon = item.rfind(':');
+      if (colon == std::string::npos)
+        throw Error(fmt::format("relight: --mix item '{}' is not NAME:WEIGHT", item));
+      double w = 0.0;
+      try {
+        size_t used = 0;
+        w = std::stod(item.substr(colon + 1), &used);
+        if (used != item.size() - colon - 1) throw std::invalid_argument("");
+      } catch (const std::exception&) {
+        throw Error(fmt::format("relight: --mix weight '{}' of '{}' is not a number",
+                                item.substr(colon + 1), item.substr(0, colon)));
+      }
+      if (!std::isfinite(w) || w < 0)
+        throw Error(fmt::format("relight: --mix weight {} of '{}' must be ≥ 0", w,
+                                item.substr(0, colon)));
+      lights.push_back(coeffs(item.substr(0, colon)));
+      weights.push_back(w);
+    }
+    light = mixLights(lights, weights);
+  }
+  PostIlluminator post(*model);
+  post.setLight(light, o.exposure);
+  if (!o.background.empty()) post.setBackground(model->project(library.get(o.background)));
+  std::vector<std::uint8_t> rgb(3 * image.pixels());
+  post.relightSrgb8(image, rgb);
+  writeSrgbPng(rgb, image.width(), image.height(), o.out);
+  return 0;
+}
+
+}  // namespace svr

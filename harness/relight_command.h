@@ -1,0 +1,23 @@
+#pragma once
+// `svr relight LI.exr --light D65 | --mix A:0.3,F11:0.7 --out x.png`: post-illumination of a
+// saved light-independent image, no re-rendering. The colour model is read from the JSON the
+// renderer wrote beside the EXR (or --model).
+
+#include <string>
+
+namespace svr {
+
+struct RelightOptions {
+  std::string data_dir;
+  std::string image;
+  std::string model;  // default: the EXR's svr:model_file attribute, beside it
+  std::string light;
+  std::string mix;    // "A:0.3,F11:0.7"
+  std::string background;
+  double exposure = 1.0;
+  std::string out;
+};
+
+int runRelight(const RelightOptions& options);
+
+}  // namespace svr

@@ -1,0 +1,26 @@
+#pragma once
+// `svr render SCENE --out DIR`: load, classify, render once, relight under every scene light and
+// light mix. Writes the light-independent EXR and its model JSON, one sRGB PNG per light and
+// mix, and render.json with the settings and timings.
+
+#include <cstdint>
+#include <optional>
+#include <string>
+
+namespace svr {
+
+struct RenderOptions {
+  std::string data_dir;
+  std::string scene;
+  std::string renderer = "raycast";
+  std::string model;  // overrides the scene's
+  std::string out_dir;
+  std::optional<int> width, height;
+  bool half = false;  // store the EXR as half floats
+  std::optional<std::uint64_t> memory_budget;
+  bool quiet = false;
+};
+
+int runRender(const RenderOptions& options);
+
+}  // namespace svr

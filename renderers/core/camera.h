@@ -1,0 +1,41 @@
+#pragma once
+// Cameras (DESIGN §7): an orbit about the volume centre (azimuth about +z, elevation from the
+// xy-plane, distance) or an explicit look-at; field of view 0 = orthographic. Images have row 0
+// at the top and pixel centres at +0.5.
+
+#include <glm/vec3.hpp>
+
+namespace svr {
+
+struct Ray {
+  glm::dvec3 origin;
+  glm::dvec3 direction;  // unit length
+};
+
+struct Camera {
+  glm::dvec3 eye{0.0, -1.0, 0.0};
+  glm::dvec3 target{0.0};
+  glm::dvec3 up{0.0, 0.0, 1.0};
+  double fov_degrees = 0.0;  // vertical; 0 = orthographic
+  double ortho_height = 2.0; // world height of the orthographic view
+
+  static Camera orbit(double azimuth_deg, double elevation_deg, double distance,
+                      double fov_deg, double ortho_height);
+  bool orthographic() const { return fov_degrees <= 0.0; }
+};
+
+// Rays for a width×height image; one instance per render, cheap to query per pixel.
+class RayGenerator {
+ public:
+  RayGenerator(const Camera& camera, int width, int height);
+  Ray ray(double px, double py) const;  // px, py in pixels (centre of pixel x is x + 0.5)
+  const glm::dvec3& forward() const { return forward_; }
+
+ private:
+  Camera camera_;
+  int width_, height_;
+  glm::dvec3 forward_, right_, up_;
+  double half_w_, half_h_;
+};
+
+}  // namespace svr

@@ -1,0 +1,25 @@
+#pragma once
+// The colour model a scene renders with — "model no more than a scene needs" (DESIGN §4):
+//   rgb, spectral:n   fixed models;
+//   factor:k          trained on the scene's own palette: its lights × its materials'
+//                     reflectances, with deep products of its absorbers;
+//   auto              the smallest factor k (3..10) whose mean ΔE2000 on that palette, single
+//                     and after 256 absorption steps, stays within the scene's model_target.
+
+#include <memory>
+#include <string>
+
+#include "renderers/core/scene.h"
+#include "spectral/colorimetry.h"
+#include "spectral/colour_model.h"
+
+namespace svr {
+
+struct SceneModel {
+  std::unique_ptr<ColourModel> model;
+  std::string description;  // how it was chosen, for render.json and the terminal
+};
+
+SceneModel makeSceneModel(const std::string& name, const Scene& scene, const Observer& observer);
+
+}  // namespace svr

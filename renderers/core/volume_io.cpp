@@ -1,0 +1,89 @@
+#include "renderers/core/volume_io.h"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <utility>
+
+#include "renderers/core/volume_source.h"
+#include "spectral/error.h"
+
+namespace svr {
+
+namespace {
+
+using detail::VolumeSource;
+namespace fs = std::filesystem;
+
+VolumeSource rawSource(const std::string& path, const RawLayout& layout) {
+  VolumeSource source;
+  VolumeHeader& h = source.header;
+  h.path = path;
+  h.format = "raw";
+  h.data_file = path;
+  const std::string name = detail::toLower(path);
+  const bool gz_name = name.size() >= 3 && name.compare(name.size() - 3, 3, ".gz") == 0;
+  h.encoding = layout.gzip || gz_name ? "gzip" : "raw";
+  h.type = layout.type;
+  h.data_bytes =
+      volumeBytes({layout.dims[0], layout.dims[1], layout.dims[2]}, layout.type, path);
+  h.dims = layout.dims;
+  for (int a = 0; a < 3; ++a)
+    if (!std::isfinite(layout.spacing[a]) || layout.spacing[a] <= 0)
+      throw Error(fmt::format("{}: raw spacing {} is {}; spacing must be finite and > 0", path,
+                              "xyz"[a], layout.spacing[a]));
+  h.spacing = layout.spacing;
+  h.endian = bytesPerVoxel(h.type) == 1 ? nativeEndian() : layout.endian;
+  if (h.encoding == "raw")
+    source.offset = layout.header_bytes;
+  else
+    source.skip_decompressed = layout.header_bytes;
+  return source;
+}
+
+// Dispatch on the extension: headers say what they are; anything else needs a raw layout.
+VolumeSource openSource(const std::string& path, const VolumeLoadOptions& options) {
+  std::error_code ec;
+  const fs::file_status status = fs::status(path, ec);
+  if (!fs::exists(status)) throw Error(fmt::format("{}: no such file", path));
+  if (fs::is_directory(status))
+    throw Error(fmt::format("{}: is a folder, not a volume file", path));
+  const std::string extension = detail::toLower(fs::path(path).extension().string());
+  if (extension == ".nrrd" || extension == ".nhdr") return detail::readNrrdSource(path);
+  if (extension == ".mhd" || extension == ".mha") return detail::readMetaImageSource(path);
+  if (options.raw) return rawSource(path, *options.raw);
+  throw Error(fmt::format("{}: unknown volume format '{}'; expected .nrrd, .nhdr, .mhd or .mha, "
+                          "or a raw layout (--raw-dims and --raw-type)",
+                          path, extension));
+}
+
+// In place, from the file's byte order to the machine's.
+void swapBytes(std::vector<std::byte>& bytes, std::size_t width) {
+  for (std::size_t i = 0; i + width <= bytes.size(); i += width)
+    std::reverse(bytes.begin() + static_cast<std::ptrdiff_t>(i),
+                 bytes.begin() + static_cast<std::ptrdiff_t>(i + width));
+}
+
+}  // namespace
+
+VolumeHeader readVolumeHeader(const std::string& path, const VolumeLoadOptions& options) {
+  VolumeSource source = openSource(path, options);
+  if (source.header.encoding == "raw") detail::checkRawPayloadSize(source);
+  return std::move(source.header);
+}
+
+Volume loadVolume(const std::string& path, const VolumeLoadOptions& options) {
+  const VolumeSource source = openSource(path, options);
+  const VolumeHeader& h = source.header;
+  if (h.encoding == "raw") detail::checkRawPayloadSize(source);
+  checkMemoryBudget(h.data_bytes, options.memory_budget,
+                    fmt::format("{}: {}", path, describeShape(h.dims, h.type)));
+  std::vector<std::byte> bytes = detail::readPayload(source);
+  const std::size_t width = bytesPerVoxel(h.type);
+  if (width > 1 && h.endian != nativeEndian()) swapBytes(bytes, width);
+  return Volume(h.dims, h.spacing, h.type, std::move(bytes), path);
+}
+
+}  // namespace svr

@@ -1,0 +1,60 @@
+#pragma once
+// Reading volumes from files: NRRD (attached .nrrd and detached .nhdr, raw or gzip), MetaImage
+// (.mhd/.mha, raw or zlib) and headerless raw files whose layout the caller states. Every
+// failure is an svr::Error that names the file and what is wrong with it; the memory budget is
+// checked before a byte of voxel data is allocated. Voxels are converted to native byte order.
+
+#include <cstdint>
+#include <glm/vec3.hpp>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "renderers/core/memory_budget.h"
+#include "renderers/core/volume.h"
+
+namespace svr {
+
+// The layout of a headerless raw file (no header states it, so the caller must).
+struct RawLayout {
+  Dims dims{0, 0, 0};
+  ScalarType type = ScalarType::kUint8;
+  Endian endian = Endian::kLittle;
+  glm::dvec3 spacing{1.0};
+  // Bytes before the voxels; for a gzip file, counted in the decompressed stream.
+  std::uint64_t header_bytes = 0;
+  // The file is a gzip stream (also assumed when the name ends in .gz).
+  bool gzip = false;
+};
+
+// What a volume file says about its voxels, read without reading the voxels.
+struct VolumeHeader {
+  std::string path;       // the file asked for
+  std::string format;     // "nrrd" (attached), "nhdr" (detached), "mhd", "mha" or "raw"
+  std::string encoding;   // how the voxels are stored: "raw", "gzip" or "zlib"
+  std::string data_file;  // the file holding the voxels (== path when they are attached)
+  Dims dims{0, 0, 0};
+  ScalarType type = ScalarType::kUint8;
+  Endian endian = Endian::kLittle;  // of the stored voxels; native for 1-byte types
+  glm::dvec3 spacing{1.0};
+  std::uint64_t data_bytes = 0;       // voxel bytes once decompressed
+  std::vector<std::string> comments;  // NRRD '#' lines, MetaImage Comment
+};
+
+struct VolumeLoadOptions {
+  // Largest voxel payload loadVolume may allocate, in bytes.
+  std::uint64_t memory_budget = defaultMemoryBudget();
+  // Layout for files that are not .nrrd/.nhdr/.mhd/.mha; such files are refused without it.
+  std::optional<RawLayout> raw;
+};
+
+// Parses the header (and, for raw encodings, checks the data file's size against it). Throws
+// svr::Error naming the file for a missing file, a malformed or unsupported header, a data file
+// that is missing or outside the header's folder, or a size mismatch. Does not check the budget.
+VolumeHeader readVolumeHeader(const std::string& path, const VolumeLoadOptions& options = {});
+
+// readVolumeHeader, the memory budget check, then the voxels. Also throws svr::Error for
+// truncated or corrupt compressed streams and non-finite float voxels.
+Volume loadVolume(const std::string& path, const VolumeLoadOptions& options = {});
+
+}  // namespace svr

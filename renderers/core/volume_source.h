@@ -1,0 +1,48 @@
+#pragma once
+// Internal to the volume readers: a parsed header plus where its voxels are, and the one
+// payload reader (raw, gzip, zlib) every format shares. Not for use outside renderers/core.
+
+#include <cstddef>
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "renderers/core/volume_io.h"
+
+namespace svr::detail {
+
+struct VolumeSource {
+  VolumeHeader header;
+  std::uint64_t offset = 0;             // bytes of header.data_file before the payload
+  std::uint64_t skip_decompressed = 0;  // bytes to drop from the decompressed stream
+  std::optional<std::uint64_t> compressed_bytes;  // length of the compressed payload, if known
+};
+
+// The path of a header's data file `name`, resolved against the header's folder. Throws
+// svr::Error naming `header_path` and `key` when `name` has a ".." component, is absolute and
+// outside that folder, or does not exist.
+std::string resolveDataFile(const std::string& header_path, const std::string& name,
+                            const std::string& key);
+
+// Size of a file in bytes; throws svr::Error naming `source` when it cannot be read.
+std::uint64_t fileSize(const std::string& path, const std::string& source);
+
+// For raw encodings: throws when the data file does not hold exactly header.data_bytes after
+// the offset ("header says … = N bytes but the data file holds M bytes").
+void checkRawPayloadSize(const VolumeSource& source);
+
+// The payload in file byte order, exactly header.data_bytes long. Throws svr::Error for short
+// files, truncated or corrupt compressed streams and streams that hold more than expected.
+std::vector<std::byte> readPayload(const VolumeSource& source);
+
+// Readers per format (nrrd_header.cpp, metaimage_header.cpp).
+VolumeSource readNrrdSource(const std::string& path);
+VolumeSource readMetaImageSource(const std::string& path);
+
+// Shared header-text helpers.
+std::string trim(const std::string& text);
+std::string toLower(std::string text);
+std::vector<std::string> splitWhitespace(const std::string& text);
+
+}  // namespace svr::detail
