@@ -1,15 +1,27 @@
 #!/usr/bin/env python3
-"""Ratios from one Google Benchmark JSON run: relight time / streaming-read time per
-size/k/storage, and frames per second.
+"""Ratios from one Google Benchmark JSON run.
 
-  build/release/bench/svr_relight_bench --benchmark_out=relight.json --benchmark_out_format=json
-  python3 bench/ratios.py relight.json
+  relight bench: relight time / streaming-read time per size/k/storage, and frames per second
+    build/release/bench/svr_relight_bench --benchmark_out=relight.json --benchmark_out_format=json
+    python3 bench/ratios.py relight.json
+  raycast bench: time per frame of every model, and its ratio to rgb at the same size
+    build/release/bench/svr_raycast_bench --benchmark_out=raycast.json --benchmark_out_format=json
+    python3 bench/ratios.py raycast.json
 """
 import json
 import sys
 
 runs = {b["name"].replace("/real_time", ""): b for b in json.load(open(sys.argv[1]))["benchmarks"]
         if b.get("run_type", "iteration") == "iteration"}
+raycast = {n: b for n, b in runs.items() if n.startswith("Raycast/")}
+if raycast:
+    print(f"{'run':<34} {'ms/frame':>9} {'/ rgb':>7}")
+    for name, b in raycast.items():
+        parts = name.split("/")
+        rgb = runs.get("/".join(parts[:-1] + ["rgb"]))
+        ratio = b["real_time"] / rgb["real_time"] if rgb else float("nan")
+        print(f"{name:<34} {b['real_time']:9.1f} {ratio:7.2f}")
+    sys.exit(0)
 print(f"{'config':<18} {'relight fps':>12} {'stream fps':>12} {'relight/stream':>15}  {'GB/s relight':>12}")
 for name, b in runs.items():
     if not name.startswith("Relight/"):

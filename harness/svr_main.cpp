@@ -56,9 +56,10 @@ int main(int argc, char** argv) {
   auto* raw_dims_option =
       info_command->add_option("--raw-dims", raw_dims, "headerless raw file: voxels X,Y,Z")
           ->delimiter(',');
-  auto* raw_type_option = info_command->add_option(
-      "--raw-type", raw_type, "headerless raw file: uint8, int8, uint16, int16, uint32, int32, "
-                              "float32 or float64");
+  auto* raw_type_option =
+      info_command->add_option("--raw-type", raw_type,
+                               "headerless raw file: uint8, int8, uint16, int16, uint32, int32, "
+                               "float32 or float64");
   auto* raw_endian_option =
       info_command->add_option("--raw-endian", raw_endian, "headerless raw file: byte order")
           ->check(CLI::IsMember({"little", "big"}))
@@ -66,8 +67,8 @@ int main(int argc, char** argv) {
   auto* raw_spacing_option =
       info_command->add_option("--raw-spacing", raw_spacing, "headerless raw file: X,Y,Z")
           ->delimiter(',');
-  auto* raw_header_option = info_command->add_option(
-      "--raw-header-bytes", raw_header_bytes, "headerless raw file: bytes to skip first");
+  auto* raw_header_option = info_command->add_option("--raw-header-bytes", raw_header_bytes,
+                                                     "headerless raw file: bytes to skip first");
   info_command->add_option("--memory-budget", memory_budget,
                            "most bytes of voxels to load, e.g. 512M or 2G (default: the "
                            "memory available now)");
@@ -80,8 +81,8 @@ int main(int argc, char** argv) {
                      0;
     if (raw) {
       if (raw_dims.size() != 3 || raw_type.empty())
-        throw svr::Error(fmt::format("{}: a raw layout needs --raw-dims X,Y,Z and --raw-type",
-                                     info.path));
+        throw svr::Error(
+            fmt::format("{}: a raw layout needs --raw-dims X,Y,Z and --raw-type", info.path));
       svr::RawLayout layout;
       layout.dims = {raw_dims[0], raw_dims[1], raw_dims[2]};
       try {
@@ -92,8 +93,8 @@ int main(int argc, char** argv) {
       layout.endian = raw_endian == "big" ? svr::Endian::kBig : svr::Endian::kLittle;
       if (raw_spacing_option->count() > 0) {
         if (raw_spacing.size() != 3)
-          throw svr::Error(fmt::format("--raw-spacing: {} values given; expected X,Y,Z",
-                                       raw_spacing.size()));
+          throw svr::Error(
+              fmt::format("--raw-spacing: {} values given; expected X,Y,Z", raw_spacing.size()));
         layout.spacing = {raw_spacing[0], raw_spacing[1], raw_spacing[2]};
       }
       layout.header_bytes = raw_header_bytes;

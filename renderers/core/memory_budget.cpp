@@ -34,9 +34,9 @@ std::uint64_t defaultMemoryBudget() {
 
 void checkMemoryBudget(std::uint64_t bytes, std::uint64_t budget, const std::string& what) {
   if (bytes <= budget) return;
-  throw Error(fmt::format(
-      "{} needs {}, over the memory budget of {} (set --memory-budget to raise it)", what,
-      formatBytes(bytes), formatBytes(budget)));
+  throw Error(
+      fmt::format("{} needs {}, over the memory budget of {} (set --memory-budget to raise it)",
+                  what, formatBytes(bytes), formatBytes(budget)));
 }
 
 std::uint64_t volumeBytes(const HeaderDims& dims, ScalarType type, const std::string& source) {
@@ -73,9 +73,10 @@ std::string formatBytes(std::uint64_t bytes) {
 
 std::uint64_t parseByteSize(const std::string& text, const std::string& what) {
   const auto fail = [&] {
-    return Error(fmt::format("{}: '{}' is not a size; expected bytes, or a number with K, M, G "
-                             "or T (binary units), e.g. 512M or 2G",
-                             what, text));
+    return Error(
+        fmt::format("{}: '{}' is not a size; expected bytes, or a number with K, M, G "
+                    "or T (binary units), e.g. 512M or 2G",
+                    what, text));
   };
   double number = 0;
   const char* const begin = text.data();

@@ -30,6 +30,7 @@ struct MetaKeys {
   std::optional<std::uint64_t> compressed_size;
   std::optional<std::vector<std::int64_t>> dim_size;
   std::optional<std::vector<double>> spacing, element_size;
+  std::string dim_size_text, spacing_text, element_size_text;
   std::optional<ScalarType> type;
   std::optional<bool> msb, compressed, binary;
   std::vector<std::string> comments;
@@ -41,8 +42,8 @@ Error badValue(const std::string& path, const std::string& key, const std::strin
   return Error(fmt::format("{}: {} = '{}' is not {}", path, key, value, expected));
 }
 
-std::int64_t parseInteger(const std::string& path, const std::string& key,
-                          const std::string& value, const std::string& word) {
+std::int64_t parseInteger(const std::string& path, const std::string& key, const std::string& value,
+                          const std::string& word) {
   char* end = nullptr;
   errno = 0;
   const long long v = std::strtoll(word.c_str(), &end, 10);
@@ -56,8 +57,7 @@ std::vector<std::int64_t> parseIntegers(const std::string& path, const std::stri
   std::vector<std::int64_t> out;
   for (const std::string& word : splitWhitespace(value))
     out.push_back(parseInteger(path, key, value, word));
-  if (out.size() != 3) throw badValue(path, key, value, "3 integers");
-  return out;
+  return out;  // the count is checked against NDims once the whole header is read
 }
 
 std::vector<double> parseSpacing(const std::string& path, const std::string& key,
@@ -68,12 +68,10 @@ std::vector<double> parseSpacing(const std::string& path, const std::string& key
     const double v = std::strtod(word.c_str(), &end);
     if (end == word.c_str() || *end != '\0') throw badValue(path, key, value, "3 numbers");
     if (!std::isfinite(v) || v <= 0)
-      throw Error(fmt::format("{}: {} = '{}': spacing must be finite and > 0", path, key,
-                              value));
+      throw Error(fmt::format("{}: {} = '{}': spacing must be finite and > 0", path, key, value));
     out.push_back(v);
   }
-  if (out.size() != 3) throw badValue(path, key, value, "3 numbers");
-  return out;
+  return out;  // the count is checked against NDims once the whole header is read
 }
 
 bool parseBool(const std::string& path, const std::string& key, const std::string& value) {
@@ -85,16 +83,17 @@ bool parseBool(const std::string& path, const std::string& key, const std::strin
 
 ScalarType parseElementType(const std::string& path, const std::string& value) {
   static const std::pair<const char*, ScalarType> kTypes[] = {
-      {"MET_UCHAR", ScalarType::kUint8},  {"MET_CHAR", ScalarType::kInt8},
+      {"MET_UCHAR", ScalarType::kUint8},   {"MET_CHAR", ScalarType::kInt8},
       {"MET_USHORT", ScalarType::kUint16}, {"MET_SHORT", ScalarType::kInt16},
-      {"MET_UINT", ScalarType::kUint32},  {"MET_INT", ScalarType::kInt32},
+      {"MET_UINT", ScalarType::kUint32},   {"MET_INT", ScalarType::kInt32},
       {"MET_FLOAT", ScalarType::kFloat32}, {"MET_DOUBLE", ScalarType::kFloat64}};
   for (const auto& [name, type] : kTypes)
     if (value == name) return type;
-  throw Error(fmt::format("{}: ElementType = '{}' is not supported; expected MET_UCHAR, "
-                          "MET_CHAR, MET_USHORT, MET_SHORT, MET_UINT, MET_INT, MET_FLOAT or "
-                          "MET_DOUBLE",
-                          path, value));
+  throw Error(
+      fmt::format("{}: ElementType = '{}' is not supported; expected MET_UCHAR, "
+                  "MET_CHAR, MET_USHORT, MET_SHORT, MET_UINT, MET_INT, MET_FLOAT or "
+                  "MET_DOUBLE",
+                  path, value));
 }
 
 MetaKeys parseKeys(const std::string& path) {
@@ -108,9 +107,10 @@ MetaKeys parseKeys(const std::string& path) {
     ++line_number;
     consumed += line.size() + (in.eof() ? 0 : 1);
     if (consumed > kMaxHeaderBytes)
-      throw Error(fmt::format("{}: no ElementDataFile in the first {} bytes; a MetaImage header "
-                              "ends with it",
-                              path, kMaxHeaderBytes));
+      throw Error(
+          fmt::format("{}: no ElementDataFile in the first {} bytes; a MetaImage header "
+                      "ends with it",
+                      path, kMaxHeaderBytes));
     if (!line.empty() && line.back() == '\r') line.pop_back();
     if (trim(line).empty()) continue;
     const auto equals = line.find('=');
@@ -126,12 +126,15 @@ MetaKeys parseKeys(const std::string& path) {
       keys.ndims = parseInteger(path, key, value, value);
     } else if (k == "dimsize") {
       keys.dim_size = parseIntegers(path, key, value);
+      keys.dim_size_text = value;
     } else if (k == "elementtype") {
       keys.type = parseElementType(path, value);
     } else if (k == "elementspacing") {
       keys.spacing = parseSpacing(path, key, value);
+      keys.spacing_text = value;
     } else if (k == "elementsize") {
       keys.element_size = parseSpacing(path, key, value);
+      keys.element_size_text = value;
     } else if (k == "binarydatabyteordermsb" || k == "elementbyteordermsb") {
       keys.msb = parseBool(path, key, value);
     } else if (k == "compresseddata") {
@@ -153,8 +156,8 @@ MetaKeys parseKeys(const std::string& path) {
       keys.element_data_file = value;
     }
   }
-  if (line_number == 0) throw Error(fmt::format("{}: empty file, expected a MetaImage header",
-                                                path));
+  if (line_number == 0)
+    throw Error(fmt::format("{}: empty file, expected a MetaImage header", path));
   keys.data_offset = consumed;
   return keys;
 }
@@ -172,14 +175,20 @@ VolumeSource readMetaImageSource(const std::string& path) {
                             *keys.object_type));
   require(keys.ndims.has_value(), "NDims");
   if (*keys.ndims != 3)
-    throw Error(fmt::format("{}: NDims = {}; svr reads 3-D volumes only (NDims = 3)", path,
-                            *keys.ndims));
+    throw Error(
+        fmt::format("{}: NDims = {}; svr reads 3-D volumes only (NDims = 3)", path, *keys.ndims));
   require(keys.dim_size.has_value(), "DimSize");
+  if (keys.dim_size->size() != 3) throw badValue(path, "DimSize", keys.dim_size_text, "3 integers");
+  if (keys.spacing && keys.spacing->size() != 3)
+    throw badValue(path, "ElementSpacing", keys.spacing_text, "3 numbers");
+  if (keys.element_size && keys.element_size->size() != 3)
+    throw badValue(path, "ElementSize", keys.element_size_text, "3 numbers");
   require(keys.type.has_value(), "ElementType");
   if (keys.channels && *keys.channels != 1)
-    throw Error(fmt::format("{}: ElementNumberOfChannels = {}; svr reads scalar volumes only "
-                            "(1 channel)",
-                            path, *keys.channels));
+    throw Error(
+        fmt::format("{}: ElementNumberOfChannels = {}; svr reads scalar volumes only "
+                    "(1 channel)",
+                    path, *keys.channels));
   if (keys.binary && !*keys.binary)
     throw Error(fmt::format("{}: BinaryData = False (voxels as text) is not supported", path));
 
@@ -202,22 +211,25 @@ VolumeSource readMetaImageSource(const std::string& path) {
   h.comments = keys.comments;
 
   const std::string& file = *keys.element_data_file;
+  const std::vector<std::string> file_words = splitWhitespace(file);
+  if (file_words.empty()) throw Error(fmt::format("{}: ElementDataFile is empty", path));
   if (toLower(file) == "local") {
     h.data_file = path;
     source.offset = keys.data_offset;
   } else {
-    if (file.find('%') != std::string::npos || toLower(splitWhitespace(file)[0]) == "list")
-      throw Error(fmt::format("{}: ElementDataFile = '{}' names several files; svr reads one "
-                              "data file per volume",
-                              path, file));
+    if (file.find('%') != std::string::npos || toLower(file_words[0]) == "list")
+      throw Error(
+          fmt::format("{}: ElementDataFile = '{}' names several files; svr reads one "
+                      "data file per volume",
+                      path, file));
     h.data_file = resolveDataFile(path, file, "ElementDataFile");
   }
   const std::int64_t header_size = keys.header_size.value_or(0);
   if (header_size == -1) {
     // -1: the voxels are the last data_bytes of the file, whatever precedes them.
     if (h.encoding != "raw")
-      throw Error(fmt::format("{}: HeaderSize = -1 cannot be used with CompressedData = True",
-                              path));
+      throw Error(
+          fmt::format("{}: HeaderSize = -1 cannot be used with CompressedData = True", path));
     const std::uint64_t size = fileSize(h.data_file, path);
     source.offset = size >= h.data_bytes ? size - h.data_bytes : 0;
   } else {
@@ -227,9 +239,10 @@ VolumeSource readMetaImageSource(const std::string& path) {
     const std::uint64_t size = fileSize(h.data_file, path);
     const std::uint64_t held = size > source.offset ? size - source.offset : 0;
     if (keys.compressed_size && *keys.compressed_size > held)
-      throw Error(fmt::format("{}: CompressedDataSize = {} but the data file '{}' holds {} "
-                              "bytes",
-                              path, *keys.compressed_size, h.data_file, held));
+      throw Error(
+          fmt::format("{}: CompressedDataSize = {} but the data file '{}' holds {} "
+                      "bytes",
+                      path, *keys.compressed_size, h.data_file, held));
     source.compressed_bytes = keys.compressed_size.value_or(held);
   }
   return source;

@@ -11,9 +11,8 @@
 // NaN spacings (teem takes them as "unknown"), types and encodings svr does not read, and a
 // "data file" with ".." or outside the header's folder (teem would open it).
 
-#include <teem/nrrd.h>
-
 #include <fmt/format.h>
+#include <teem/nrrd.h>
 
 #include <cerrno>
 #include <cmath>
@@ -66,24 +65,26 @@ void preScan(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
   if (!in) throw Error(fmt::format("{}: cannot open the file", path));
   std::string line;
-  if (!std::getline(in, line)) throw Error(fmt::format("{}: empty file, expected a NRRD header",
-                                                       path));
+  if (!std::getline(in, line))
+    throw Error(fmt::format("{}: empty file, expected a NRRD header", path));
   if (line.rfind("NRRD000", 0) != 0 || line.size() < 8)
-    throw Error(fmt::format("{}: not a NRRD file: it starts with '{}' instead of NRRD0001…"
-                            "NRRD0005",
-                            path, trim(line.substr(0, 16))));
+    throw Error(
+        fmt::format("{}: not a NRRD file: it starts with '{}' instead of NRRD0001…"
+                    "NRRD0005",
+                    path, trim(line.substr(0, 16))));
   std::optional<ScalarType> type;
   std::vector<std::int64_t> sizes;
   std::size_t header_bytes = line.size();
   while (std::getline(in, line)) {
     header_bytes += line.size() + 1;
     if (header_bytes > kMaxHeaderBytes)
-      throw Error(fmt::format("{}: header longer than {} bytes without the empty line that "
-                              "ends it",
-                              path, kMaxHeaderBytes));
+      throw Error(
+          fmt::format("{}: header longer than {} bytes without the empty line that "
+                      "ends it",
+                      path, kMaxHeaderBytes));
     if (!line.empty() && line.back() == '\r') line.pop_back();
-    if (line.empty()) break;                // the end of an attached header
-    if (line[0] == '#') continue;           // comment
+    if (line.empty()) break;       // the end of an attached header
+    if (line[0] == '#') continue;  // comment
     const auto colon = line.find(": ");
     if (colon == std::string::npos || line.find(":=") < colon) continue;  // key:=value
     const std::string key = toLower(trim(line.substr(0, colon)));
@@ -97,13 +98,14 @@ void preScan(const std::string& path) {
     } else if (key == "encoding") {
       const std::string encoding = toLower(value);
       if (encoding != "raw" && encoding != "gzip" && encoding != "gz")
-        throw Error(fmt::format("{}: encoding '{}' is not supported; svr reads raw or gzip",
-                                path, value));
+        throw Error(
+            fmt::format("{}: encoding '{}' is not supported; svr reads raw or gzip", path, value));
     } else if (key == "dimension") {
       if (value != "3")
-        throw Error(fmt::format("{}: dimension is {}; svr reads 3-D scalar volumes only "
-                                "(dimension 3)",
-                                path, value));
+        throw Error(
+            fmt::format("{}: dimension is {}; svr reads 3-D scalar volumes only "
+                        "(dimension 3)",
+                        path, value));
     } else if (key == "sizes") {
       const std::vector<std::string> words = splitWhitespace(value);
       for (std::size_t a = 0; a < words.size(); ++a)
@@ -121,9 +123,10 @@ void preScan(const std::string& path) {
     } else if (key == "data file" || key == "datafile") {
       const std::vector<std::string> words = splitWhitespace(value);
       if (words.size() != 1 || words[0] == "LIST")
-        throw Error(fmt::format("{}: data file '{}' names several files; svr reads one data "
-                                "file per volume",
-                                path, value));
+        throw Error(
+            fmt::format("{}: data file '{}' names several files; svr reads one data "
+                        "file per volume",
+                        path, value));
       resolveDataFile(path, value, "data file");
     }
   }
@@ -152,18 +155,27 @@ std::string takeBiffMessage() {
 
 ScalarType scalarTypeOf(const std::string& path, int teem_type) {
   switch (teem_type) {
-    case nrrdTypeChar: return ScalarType::kInt8;
-    case nrrdTypeUChar: return ScalarType::kUint8;
-    case nrrdTypeShort: return ScalarType::kInt16;
-    case nrrdTypeUShort: return ScalarType::kUint16;
-    case nrrdTypeInt: return ScalarType::kInt32;
-    case nrrdTypeUInt: return ScalarType::kUint32;
-    case nrrdTypeFloat: return ScalarType::kFloat32;
-    case nrrdTypeDouble: return ScalarType::kFloat64;
+    case nrrdTypeChar:
+      return ScalarType::kInt8;
+    case nrrdTypeUChar:
+      return ScalarType::kUint8;
+    case nrrdTypeShort:
+      return ScalarType::kInt16;
+    case nrrdTypeUShort:
+      return ScalarType::kUint16;
+    case nrrdTypeInt:
+      return ScalarType::kInt32;
+    case nrrdTypeUInt:
+      return ScalarType::kUint32;
+    case nrrdTypeFloat:
+      return ScalarType::kFloat32;
+    case nrrdTypeDouble:
+      return ScalarType::kFloat64;
     default:
-      throw Error(fmt::format("{}: type '{}' is not supported; expected uint8, int8, uint16, "
-                              "int16, uint32, int32, float32 or float64",
-                              path, airEnumStr(nrrdType, teem_type)));
+      throw Error(
+          fmt::format("{}: type '{}' is not supported; expected uint8, int8, uint16, "
+                      "int16, uint32, int32, float32 or float64",
+                      path, airEnumStr(nrrdType, teem_type)));
   }
 }
 
@@ -192,8 +204,8 @@ VolumeSource readNrrdSource(const std::string& path) {
   VolumeHeader& h = source.header;
   h.path = path;
   if (nrrd->dim != 3)
-    throw Error(fmt::format("{}: dimension is {}; svr reads 3-D scalar volumes only", path,
-                            nrrd->dim));
+    throw Error(
+        fmt::format("{}: dimension is {}; svr reads 3-D scalar volumes only", path, nrrd->dim));
   h.type = scalarTypeOf(path, nrrd->type);
   HeaderDims dims{};
   for (int a = 0; a < 3; ++a) {

@@ -47,17 +47,14 @@ glm::dvec3 marschnerLobbGradient(glm::dvec3 p) {
   // which keeps the gradient finite (and zero) on the axis.
   const double sin_over_r = r > 1e-12 ? std::sin(kPi * r / 2) / r : kPi / 2;
   const double radial = kPi * kPi * kMarschnerLobbFM *
-                        std::sin(2 * kPi * kMarschnerLobbFM * std::cos(kPi * r / 2)) *
-                        sin_over_r;
-  return scale * glm::dvec3(kMarschnerLobbAlpha * radial * p.x,
-                            kMarschnerLobbAlpha * radial * p.y,
+                        std::sin(2 * kPi * kMarschnerLobbFM * std::cos(kPi * r / 2)) * sin_over_r;
+  return scale * glm::dvec3(kMarschnerLobbAlpha * radial * p.x, kMarschnerLobbAlpha * radial * p.y,
                             -(kPi / 2) * std::cos(kPi * p.z / 2));
 }
 
 Volume marschnerLobbVolume(int n) {
   if (n < 2)
-    throw Error(fmt::format("Marschner-Lobb volume: n is {}; it needs n ≥ 2 samples per axis",
-                            n));
+    throw Error(fmt::format("Marschner-Lobb volume: n is {}; it needs n ≥ 2 samples per axis", n));
   const double h = 2.0 / (n - 1);
   return sample({n, n, n}, glm::dvec3(h), fmt::format("marschner-lobb {}³", n), marschnerLobb);
 }
@@ -69,8 +66,9 @@ Volume slabVolume(Dims dims, glm::dvec3 spacing, double thickness) {
 
 double slabChordLength(double thickness, glm::dvec3 direction) {
   if (direction.z == 0) return std::numeric_limits<double>::infinity();
-  return thickness * std::sqrt(direction.x * direction.x + direction.y * direction.y +
-                               direction.z * direction.z) /
+  return thickness *
+         std::sqrt(direction.x * direction.x + direction.y * direction.y +
+                   direction.z * direction.z) /
          std::abs(direction.z);
 }
 
@@ -99,8 +97,8 @@ double boxChordLength(glm::dvec3 half_size, glm::dvec3 origin, glm::dvec3 direct
     t1 = std::min(t1, tb);
   }
   if (t1 <= t0) return 0;
-  const double length = std::sqrt(direction.x * direction.x + direction.y * direction.y +
-                                  direction.z * direction.z);
+  const double length =
+      std::sqrt(direction.x * direction.x + direction.y * direction.y + direction.z * direction.z);
   return (t1 - t0) * length;
 }
 
@@ -125,12 +123,13 @@ Volume nestedShellsVolume(Dims dims, glm::dvec3 spacing, const std::vector<doubl
   if (radii.empty()) throw Error("nested shells: no radii");
   for (std::size_t i = 0; i < radii.size(); ++i)
     if (!std::isfinite(radii[i]) || radii[i] <= (i ? radii[i - 1] : 0.0))
-      throw Error(fmt::format("nested shells: radius {} is {}; radii must be finite, > 0 and "
-                              "strictly increasing",
-                              i, radii[i]));
+      throw Error(
+          fmt::format("nested shells: radius {} is {}; radii must be finite, > 0 and "
+                      "strictly increasing",
+                      i, radii[i]));
   return sample(dims, spacing, fmt::format("{} nested shells", radii.size()), [&](glm::dvec3 p) {
-    return static_cast<double>(nestedShellIndex(radii, std::sqrt(p.x * p.x + p.y * p.y +
-                                                                 p.z * p.z)));
+    return static_cast<double>(
+        nestedShellIndex(radii, std::sqrt(p.x * p.x + p.y * p.y + p.z * p.z)));
   });
 }
 

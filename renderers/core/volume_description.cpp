@@ -43,12 +43,12 @@ std::string histogram(const Volume& volume) {
                   number(lo), number(hi));
   for (int b = 0; b < bins; ++b) {
     const double from = lo + b * width, to = b + 1 == bins ? hi : lo + (b + 1) * width;
-    const int bar = counts[b] == 0 ? 0
-                                   : std::max(1, static_cast<int>(std::lround(
-                                                     kBarWidth *
-                                                     std::log1p(static_cast<double>(counts[b])) /
-                                                     log_most)));
-    out += fmt::format("    {:>12.6g} … {:<12.6g}{} {:<{}} {:>11}\n", from, to,
+    const int bar =
+        counts[b] == 0
+            ? 0
+            : std::max(1, static_cast<int>(std::lround(
+                              kBarWidth * std::log1p(static_cast<double>(counts[b])) / log_most)));
+    out += fmt::format("    [{:>10.6g}, {:>10.6g}{}  {:<{}} {:>11}\n", from, to,
                        b + 1 == bins ? ']' : ')', std::string(static_cast<std::size_t>(bar), '#'),
                        kBarWidth, counts[b]);
   }
@@ -62,9 +62,9 @@ std::string describeVolume(const VolumeHeader& header, const Volume& volume) {
   const std::size_t width = bytesPerVoxel(volume.type());
   const auto [lo, hi] = volume.valueRange();
   std::string out = fmt::format("{}\n", header.path);
-  const std::string where =
-      header.data_file == header.path ? "voxels in the same file"
-                                      : fmt::format("voxels in {}", header.data_file);
+  const std::string where = header.data_file == header.path
+                                ? "voxels in the same file"
+                                : fmt::format("voxels in {}", header.data_file);
   out += fmt::format("  format      {}, {}\n", header.format, where);
   out += fmt::format("  dims        {} × {} × {}  ({} voxels)\n", d[0], d[1], d[2],
                      volume.voxelCount());

@@ -27,8 +27,7 @@ VolumeSource rawSource(const std::string& path, const RawLayout& layout) {
   const bool gz_name = name.size() >= 3 && name.compare(name.size() - 3, 3, ".gz") == 0;
   h.encoding = layout.gzip || gz_name ? "gzip" : "raw";
   h.type = layout.type;
-  h.data_bytes =
-      volumeBytes({layout.dims[0], layout.dims[1], layout.dims[2]}, layout.type, path);
+  h.data_bytes = volumeBytes({layout.dims[0], layout.dims[1], layout.dims[2]}, layout.type, path);
   h.dims = layout.dims;
   for (int a = 0; a < 3; ++a)
     if (!std::isfinite(layout.spacing[a]) || layout.spacing[a] <= 0)
@@ -54,9 +53,10 @@ VolumeSource openSource(const std::string& path, const VolumeLoadOptions& option
   if (extension == ".nrrd" || extension == ".nhdr") return detail::readNrrdSource(path);
   if (extension == ".mhd" || extension == ".mha") return detail::readMetaImageSource(path);
   if (options.raw) return rawSource(path, *options.raw);
-  throw Error(fmt::format("{}: unknown volume format '{}'; expected .nrrd, .nhdr, .mhd or .mha, "
-                          "or a raw layout (--raw-dims and --raw-type)",
-                          path, extension));
+  throw Error(
+      fmt::format("{}: unknown volume format '{}'; expected .nrrd, .nhdr, .mhd or .mha, "
+                  "or a raw layout (--raw-dims and --raw-type)",
+                  path, extension));
 }
 
 // In place, from the file's byte order to the machine's.

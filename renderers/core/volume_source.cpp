@@ -28,8 +28,7 @@ using FilePtr = std::unique_ptr<std::FILE, FileCloser>;
 
 // "header says 41×41×41 uint8 = 68921 bytes": the expectation every size message starts from.
 std::string expectation(const VolumeHeader& header) {
-  return fmt::format("{} says {} = {} bytes",
-                     header.format == "raw" ? "the raw layout" : "header",
+  return fmt::format("{} says {} = {} bytes", header.format == "raw" ? "the raw layout" : "header",
                      describeShape(header.dims, header.type), header.data_bytes);
 }
 
@@ -53,12 +52,12 @@ void inflatePayload(std::FILE* file, const VolumeSource& source, std::vector<std
   bool input_done = false;
   const auto refill = [&] {
     if (zs.avail_in > 0 || input_done) return;
-    const std::size_t want = static_cast<std::size_t>(
-        std::min<std::uint64_t>(input.size(), input_left));
+    const std::size_t want =
+        static_cast<std::size_t>(std::min<std::uint64_t>(input.size(), input_left));
     const std::size_t got = want == 0 ? 0 : std::fread(input.data(), 1, want, file);
     if (std::ferror(file))
-      throw Error(fmt::format("{}: cannot read '{}': {}", h.path, h.data_file,
-                              std::strerror(errno)));
+      throw Error(
+          fmt::format("{}: cannot read '{}': {}", h.path, h.data_file, std::strerror(errno)));
     input_left -= got;
     input_done = got < want || input_left == 0;
     zs.next_in = input.data();
@@ -126,8 +125,7 @@ void inflatePayload(std::FILE* file, const VolumeSource& source, std::vector<std
       throw Error(fmt::format("{}: {} but {} holds more", h.path, expectation(h), stream));
     ended = s.code == Z_STREAM_END;
     if (s.stalled && inputExhausted())
-      throw Error(fmt::format("{}: {} is truncated: it ends before its checksum", h.path,
-                              stream));
+      throw Error(fmt::format("{}: {} is truncated: it ends before its checksum", h.path, stream));
   }
 }
 
@@ -158,9 +156,10 @@ std::string resolveDataFile(const std::string& header_path, const std::string& n
   const fs::path given(name);
   for (const fs::path& part : given)
     if (part == "..")
-      throw Error(fmt::format("{}: {} '{}' has a '..' component; the data file must lie in the "
-                              "header's folder",
-                              header_path, key, name));
+      throw Error(
+          fmt::format("{}: {} '{}' has a '..' component; the data file must lie in the "
+                      "header's folder",
+                      header_path, key, name));
   const fs::path header_dir = fs::path(header_path).parent_path();
   const fs::path full = given.is_absolute() ? given : header_dir / given;
   if (given.is_absolute()) {
@@ -169,14 +168,14 @@ std::string resolveDataFile(const std::string& header_path, const std::string& n
     const fs::path file = given.lexically_normal();
     const auto [d, f] = std::mismatch(dir.begin(), dir.end(), file.begin(), file.end());
     if (d != dir.end() && !d->empty())
-      throw Error(fmt::format("{}: {} '{}' is outside the header's folder '{}'", header_path,
-                              key, name, dir.string()));
+      throw Error(fmt::format("{}: {} '{}' is outside the header's folder '{}'", header_path, key,
+                              name, dir.string()));
   }
   std::error_code ec;
   const fs::file_status status = fs::status(full, ec);
   if (!fs::exists(status))
-    throw Error(fmt::format("{}: {} '{}' does not exist (looked for '{}')", header_path, key,
-                            name, full.string()));
+    throw Error(fmt::format("{}: {} '{}' does not exist (looked for '{}')", header_path, key, name,
+                            full.string()));
   if (!fs::is_regular_file(status))
     throw Error(fmt::format("{}: {} '{}' is not a regular file", header_path, key, name));
   return full.string();
@@ -197,8 +196,8 @@ void checkRawPayloadSize(const VolumeSource& source) {
   if (held == h.data_bytes) return;
   const std::string after =
       source.offset > 0 ? fmt::format(" after the first {}", source.offset) : "";
-  throw Error(fmt::format("{}: {} but the data file '{}' holds {} bytes{}", h.path,
-                          expectation(h), h.data_file, held, after));
+  throw Error(fmt::format("{}: {} but the data file '{}' holds {} bytes{}", h.path, expectation(h),
+                          h.data_file, held, after));
 }
 
 std::vector<std::byte> readPayload(const VolumeSource& source) {
@@ -209,8 +208,8 @@ std::vector<std::byte> readPayload(const VolumeSource& source) {
                             std::strerror(errno)));
   if (source.offset > static_cast<std::uint64_t>(INT64_MAX) ||
       fseeko(file.get(), static_cast<off_t>(source.offset), SEEK_SET) != 0)
-    throw Error(fmt::format("{}: cannot seek to byte {} of '{}'", h.path, source.offset,
-                            h.data_file));
+    throw Error(
+        fmt::format("{}: cannot seek to byte {} of '{}'", h.path, source.offset, h.data_file));
   std::vector<std::byte> out(h.data_bytes);
   if (h.encoding == "raw") {
     const std::size_t got = std::fread(out.data(), 1, out.size(), file.get());

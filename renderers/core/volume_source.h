@@ -14,8 +14,8 @@ namespace svr::detail {
 
 struct VolumeSource {
   VolumeHeader header;
-  std::uint64_t offset = 0;             // bytes of header.data_file before the payload
-  std::uint64_t skip_decompressed = 0;  // bytes to drop from the decompressed stream
+  std::uint64_t offset = 0;                       // bytes of header.data_file before the payload
+  std::uint64_t skip_decompressed = 0;            // bytes to drop from the decompressed stream
   std::optional<std::uint64_t> compressed_bytes;  // length of the compressed payload, if known
 };
 

@@ -1,0 +1,60 @@
+// Raycast time per frame for the engine scene (data/scenes/engine.json) at 512² and 800²:
+// Raycast/engine/<size>/<model> for rgb, factor:6 and spectral:81 in one run, so the ratio
+// factor:6 / rgb is read from one run (bench/ratios.py --raycast). Classification happens once,
+// outside the timed loop, as it does when only the view changes.
+#include <benchmark/benchmark.h>
+#include <fmt/format.h>
+
+#include "renderers/core/classification.h"
+#include "renderers/core/scene.h"
+#include "renderers/core/scene_model.h"
+#include "renderers/registry.h"
+#include "spectral/colorimetry.h"
+#include "spectral/data_dir.h"
+
+namespace svr {
+namespace {
+
+struct Setup {
+  SpectrumLibrary library = SpectrumLibrary::load(defaultDataDir(), WavelengthGrid::standard());
+  Observer observer = Observer::cie1931(defaultDataDir(), WavelengthGrid::standard());
+  Scene scene = loadScene(defaultDataDir() + "/scenes/engine.json", library);
+};
+
+const Setup& setup() {
+  static const Setup s;
+  return s;
+}
+
+void raycast(benchmark::State& state, int size, const std::string& model_name) {
+  const Setup& s = setup();
+  const SceneModel model = makeSceneModel(model_name, s.scene, s.observer);
+  ClassificationOptions options;
+  options.step_world = s.scene.stepWorld();
+  options.bins = s.scene.bins;
+  const ClassifiedVolume cv = classify(s.scene.volume, s.scene.transfer_function, *model.model, options);
+  const auto renderer = makeRenderer("raycast");
+  RenderRequest request{cv, s.scene.camera, size, size, s.scene.shading, s.scene.light_direction,
+                        s.scene.termination, true};
+  for (auto _ : state) {
+    auto image = renderer->render(request, nullptr);
+    benchmark::DoNotOptimize(image.planeFloat(0).data());
+  }
+  state.SetItemsProcessed(state.iterations());
+}
+
+const bool registered = [] {
+  for (int size : {512, 800})
+    for (const char* model : {"rgb", "factor:6", "spectral:81"})
+      benchmark::RegisterBenchmark(fmt::format("Raycast/engine/{}/{}", size, model).c_str(),
+                                   raycast, size, std::string(model))
+          ->UseRealTime()
+          ->Unit(benchmark::kMillisecond)
+          ->MinTime(2.0);
+  return true;
+}();
+
+}  // namespace
+}  // namespace svr
+
+BENCHMARK_MAIN();

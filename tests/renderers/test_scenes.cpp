@@ -1,0 +1,46 @@
+#include "tests/renderers/test_scenes.h"
+
+#include <nlohmann/json.hpp>
+
+namespace svr::test {
+
+const std::string& rendererDataDir() {
+  static const std::string dir = SVR_TEST_DATA_DIR;
+  return dir;
+}
+
+const SpectrumLibrary& rendererLibrary() {
+  static const SpectrumLibrary lib =
+      SpectrumLibrary::load(rendererDataDir(), WavelengthGrid::standard());
+  return lib;
+}
+
+const Observer& rendererObserver() {
+  static const Observer obs = Observer::cie1931(rendererDataDir(), WavelengthGrid::standard());
+  return obs;
+}
+
+Scene slabScene(double sigma, const std::string& absorption, double step_voxels) {
+  nlohmann::json material = {{"reflectance", "ColorChecker/white 9.5 (.05 D)"}, {"opacity", sigma}};
+  if (!absorption.empty()) material["absorption"] = absorption;
+  const nlohmann::json j = {
+      {"volume", {{"procedural", "slab"}, {"size", 48}, {"thickness", 0.25}}},
+      {"materials", {{"slab", material}}},
+      // Extinction linear in the value: the trilinear field's line integral is then exact.
+      {"transfer_function", {{"points", {{0, "slab"}}}, {"opacity", {{0, 0}, {1, 1}}}}},
+      {"lights", {"D65", "A"}},
+      {"camera", {{"azimuth", 0}, {"elevation", 90}, {"zoom", 2}}},
+      {"image", {{"width", 32}, {"height", 32}}},
+      {"render", {{"step", step_voxels}, {"early_termination", 0}, {"bins", 4096}}},
+  };
+  return parseScene(j, rendererDataDir() + "/scenes/slab.json", rendererLibrary());
+}
+
+Scene phantomScene() {
+  Scene s = loadScene(rendererDataDir() + "/scenes/phantom.json", rendererLibrary());
+  s.width = s.height = 48;
+  s.light_direction = glm::dvec3(0.0, -0.6, 0.8);
+  return s;
+}
+
+}  // namespace svr::test
