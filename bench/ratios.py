@@ -11,7 +11,12 @@
 import json
 import sys
 
-runs = {b["name"].replace("/real_time", ""): b for b in json.load(open(sys.argv[1]))["benchmarks"]
+def config(name):
+    """The benchmark's own name, without Google Benchmark's /min_time:…/real_time suffixes."""
+    return "/".join(p for p in name.split("/") if p != "real_time" and not p.startswith("min_time:"))
+
+
+runs = {config(b["name"]): b for b in json.load(open(sys.argv[1]))["benchmarks"]
         if b.get("run_type", "iteration") == "iteration"}
 raycast = {n: b for n, b in runs.items() if n.startswith("Raycast/")}
 if raycast:

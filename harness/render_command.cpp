@@ -74,7 +74,11 @@ int runRender(const RenderOptions& o) {
   }
   const double render_ms = msSince(t_render);
 
-  fs::create_directories(o.out_dir);
+  std::error_code mkdir_error;
+  fs::create_directories(o.out_dir, mkdir_error);
+  if (mkdir_error)
+    throw Error(fmt::format("--out {}: cannot create the folder: {}", o.out_dir,
+                            mkdir_error.message()));
   // Relight under every light and mix.
   const auto t_relight = clock::now();
   PostIlluminator post(model);

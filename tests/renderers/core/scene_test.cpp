@@ -3,6 +3,9 @@
 #include <gtest/gtest.h>
 
 #include "renderers/core/classification.h"
+#include "renderers/core/scene_model.h"
+
+#include <fmt/format.h>
 #include "spectral/componentwise_model.h"
 #include "spectral/error.h"
 #include "tests/renderers/test_scenes.h"
@@ -92,6 +95,25 @@ TEST(Scene, ErrorsNameFileKeyPathAndValue) {
   j = minimalScene();
   j["render"] = {{"step", 0}};
   EXPECT_EQ(errorOf(j), "s.json: render.step: value 0 is outside 0.001..64");
+}
+
+TEST(SceneModel, AutoPicksTheSmallestKWithinTheTarget) {
+  Scene s = test::phantomScene();
+  s.auto_target = 2.0;
+  const SceneModel chosen = makeSceneModel("auto", s, test::rendererObserver());
+  EXPECT_EQ(chosen.model->kind(), ModelKind::kFactor);
+  EXPECT_NE(chosen.description.find("the smallest k within 2"), std::string::npos)
+      << chosen.description;
+  // One k lower misses the target (or k is already the smallest).
+  const int k = chosen.model->channels();
+  if (k > 3) {
+    const SceneModel lower = makeSceneModel(fmt::format("factor:{}", k - 1), s,
+                                            test::rendererObserver());
+    const auto pos = lower.description.find("mean ΔE2000 ");
+    ASSERT_NE(pos, std::string::npos);
+    EXPECT_GT(std::stod(lower.description.substr(pos + std::string("mean ΔE2000 ").size())), 2.0);
+  }
+  EXPECT_THROW(makeSceneModel("linear:4", s, test::rendererObserver()), Error);
 }
 
 TEST(Classification, TablesFollowTheTransferFunction) {

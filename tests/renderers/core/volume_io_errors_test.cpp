@@ -274,6 +274,8 @@ TEST(VolumeIoErrors, MalformedValuesOfKnownMetaImageKeys) {
   EXPECT_THAT(loadError(mhd(dir, "g.mhd", "this line has no equals sign\n")),
               HasSubstr("line 1 is 'this line has no equals sign', not 'Key = Value'"));
   EXPECT_THAT(loadError(mhd(dir, "h.mhd", "")), HasSubstr("empty file"));
+  EXPECT_THAT(loadError(mhd(dir, "i.mhd", kMhdHead + "ElementDataFile =\n")),
+              HasSubstr("ElementDataFile is empty"));
 }
 
 TEST(VolumeIoErrors, NanZeroOrNegativeSpacing) {
