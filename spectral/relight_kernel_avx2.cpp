@@ -60,10 +60,69 @@ inline void encodeSrgbChunk(const float* r, const float* g, const float* b, int 
   encodeSrgbWithTable(r + i, g + i, b + i, n - i, out + 3 * i, lut);
 }
 #include "spectral/relight_kernel_body.inc"
+
+// The common case fused: float planes to sRGB8, eight pixels at a time kept in registers from
+// the loads through the matrix, the finiteness test and the encoding to the byte stores (the
+// general body round-trips every chunk through a buffer). Rows that do not fill the last eight
+// pixels, and any row holding a non-finite value, go through the general body.
+template <int P>
+long relightFusedSrgb(const RelightJob& job) {
+  const float* m = job.matrix;
+  __m256 mr[P], mg[P], mb[P];
+  for (int p = 0; p < P; ++p) {
+    mr[p] = _mm256_set1_ps(m[p]);
+    mg[p] = _mm256_set1_ps(m[P + p]);
+    mb[p] = _mm256_set1_ps(m[2 * P + p]);
+  }
+  const __m256i pack = _mm256_setr_epi8(0, 1, 2, 4, 5, 6, 8, 9, 10, 12, 13, 14, -1, -1, -1, -1,
+                                        0, 1, 2, 4, 5, 6, 8, 9, 10, 12, 13, 14, -1, -1, -1, -1);
+  std::size_t i = job.begin;
+  for (; i + 8 <= job.end; i += 8) {
+    __m256 r = _mm256_setzero_ps(), g = r, b = r;
+    for (int p = 0; p < P; ++p) {
+      const __m256 v = _mm256_loadu_ps(static_cast<const float*>(job.planes[p]) + i);
+      r = _mm256_fmadd_ps(mr[p], v, r);
+      g = _mm256_fmadd_ps(mg[p], v, g);
+      b = _mm256_fmadd_ps(mb[p], v, b);
+    }
+    // x − x is NaN exactly for NaN and ±Inf.
+    const __m256 bad = _mm256_or_ps(
+        _mm256_cmp_ps(_mm256_sub_ps(r, r), _mm256_sub_ps(r, r), _CMP_UNORD_Q),
+        _mm256_or_ps(_mm256_cmp_ps(_mm256_sub_ps(g, g), _mm256_sub_ps(g, g), _CMP_UNORD_Q),
+                     _mm256_cmp_ps(_mm256_sub_ps(b, b), _mm256_sub_ps(b, b), _CMP_UNORD_Q)));
+    if (_mm256_movemask_ps(bad)) break;  // the general body finds and reports the pixel
+    const __m256i px = _mm256_or_si256(
+        srgbCodes(r, job.srgb_lut),
+        _mm256_or_si256(_mm256_slli_epi32(srgbCodes(g, job.srgb_lut), 8),
+                        _mm256_slli_epi32(srgbCodes(b, job.srgb_lut), 16)));
+    const __m256i packed = _mm256_shuffle_epi8(px, pack);
+    const __m128i lo = _mm256_castsi256_si128(packed), hi = _mm256_extracti128_si256(packed, 1);
+    std::uint8_t* o = job.out_srgb + 3 * i;
+    _mm_storel_epi64(reinterpret_cast<__m128i*>(o), lo);
+    const int lo_tail = _mm_extract_epi32(lo, 2);
+    std::memcpy(o + 8, &lo_tail, 4);
+    _mm_storel_epi64(reinterpret_cast<__m128i*>(o + 12), hi);
+    const int hi_tail = _mm_extract_epi32(hi, 2);
+    std::memcpy(o + 20, &hi_tail, 4);
+  }
+  if (i == job.end) return -1;
+  RelightJob rest = job;
+  rest.begin = i;
+  return relightSpan<P, float, true>(rest);
+}
 }  // namespace
 
 bool compiled() { return true; }
 RelightFn pick(int width, SampleStorage storage, RelitEncoding encoding) {
+  if (storage == SampleStorage::kFloat && encoding == RelitEncoding::kSrgb8) switch (width) {
+#define SVR_CASE(N) \
+  case N:           \
+    return &relightFusedSrgb<N>;
+      SVR_RELIGHT_PLANE_COUNTS(SVR_CASE)
+#undef SVR_CASE
+      default:
+        break;
+    }
   return pickKernel(width, storage, encoding);
 }
 #else
