@@ -34,8 +34,8 @@ void raycast(benchmark::State& state, int size, const std::string& model_name) {
   options.bins = s.scene.bins;
   const ClassifiedVolume cv = classify(s.scene.volume, s.scene.transfer_function, *model.model, options);
   const auto renderer = makeRenderer("raycast");
-  RenderRequest request{cv, s.scene.camera, size, size, s.scene.shading, s.scene.light_direction,
-                        s.scene.termination, true};
+  RenderRequest request{cv,   s.scene.camera,      size, size, s.scene.shading, s.scene.light_direction,
+                        s.scene.termination, true, s.scene.renderer_options};
   for (auto _ : state) {
     auto image = renderer->render(request, nullptr);
     benchmark::DoNotOptimize(image.planeFloat(0).data());

@@ -35,6 +35,18 @@ std::string fileStem(const std::string& name) {
   return out.empty() ? "light" : out;
 }
 
+// "splat.mode=sheet" → options["splat"]["mode"] = "sheet"; values that parse as JSON (numbers,
+// true/false) keep their type.
+void applyOption(nlohmann::json& options, const std::string& text) {
+  const auto dot = text.find('.'), eq = text.find('=');
+  if (dot == std::string::npos || eq == std::string::npos || dot == 0 || eq < dot + 2)
+    throw Error(fmt::format("--option '{}': expected BACKEND.KEY=VALUE, e.g. splat.mode=sheet", text));
+  const std::string backend = text.substr(0, dot), key = text.substr(dot + 1, eq - dot - 1);
+  const std::string value = text.substr(eq + 1);
+  nlohmann::json parsed = nlohmann::json::parse(value, nullptr, false);
+  options[backend][key] = parsed.is_discarded() ? nlohmann::json(value) : parsed;
+}
+
 }  // namespace
 
 int runRender(const RenderOptions& o) {
@@ -49,6 +61,7 @@ int runRender(const RenderOptions& o) {
   if (o.width) scene.width = *o.width;
   if (o.height) scene.height = *o.height;
   const auto renderer = makeRenderer(o.renderer);  // unknown names fail before any work
+  for (const auto& option : o.options) applyOption(scene.renderer_options, option);
   const double load_ms = msSince(t_load);
 
   const auto t_classify = clock::now();
@@ -67,7 +80,8 @@ int runRender(const RenderOptions& o) {
     Progress progress("render", 100, o.quiet);
     int shown = 0;
     RenderRequest request{classified, scene.camera, scene.width, scene.height, scene.shading,
-                          scene.light_direction, scene.termination, true};
+                          scene.light_direction, scene.termination, true,
+                          scene.renderer_options};
     image = renderer->render(request, [&](double f) {
       while (shown < static_cast<int>(f * 100)) ++shown, progress.advance();
     });
@@ -130,6 +144,7 @@ int runRender(const RenderOptions& o) {
       {"volume", scene.volume_source},
       {"step_world", scene.stepWorld()},
       {"early_termination", scene.termination},
+      {"renderer_options", scene.renderer_options},
       {"exr", "light_independent.exr"},
       {"model_file", "light_independent.model.json"},
       {"timings_ms",

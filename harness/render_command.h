@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <optional>
 #include <string>
+#include <vector>
 
 namespace svr {
 
@@ -17,6 +18,7 @@ struct RenderOptions {
   std::string out_dir;
   std::optional<int> width, height;
   bool half = false;  // store the EXR as half floats
+  std::vector<std::string> options;  // "backend.key=value", over the scene's render.options
   std::optional<std::uint64_t> memory_budget;
   bool quiet = false;
 };

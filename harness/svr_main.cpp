@@ -118,6 +118,8 @@ int main(int argc, char** argv) {
   render_command->add_option("--width", render.width, "image width (default: the scene's)");
   render_command->add_option("--height", render.height, "image height (default: the scene's)");
   render_command->add_flag("--half", render.half, "store the light-independent EXR as half floats");
+  render_command->add_option("--option", render.options,
+                             "backend option BACKEND.KEY=VALUE (repeatable), e.g. splat.mode=sheet");
   render_command->add_option("--memory-budget", render_budget, "most bytes of voxels to load");
   render_command->add_flag("-q,--quiet", render.quiet, "no progress bar or summary");
   render_command->callback([&] {

@@ -8,6 +8,7 @@
 #include <string>
 
 #include <glm/vec3.hpp>
+#include <nlohmann/json.hpp>
 
 #include "renderers/core/camera.h"
 #include "renderers/core/classification.h"
@@ -24,6 +25,10 @@ struct RenderRequest {
   std::optional<glm::dvec3> light_direction;  // towards the light; empty = headlight
   double termination = 0.01;  // early termination when max T < this; 0 = off
   bool empty_space_skipping = true;
+  // Backend options, keyed by backend name: {"splat": {"mode": "sheet"}}. Each backend reads
+  // its own object (through a JsonReader, so unknown keys are errors) and ignores the others',
+  // so one set of options can drive a comparison across every backend.
+  nlohmann::json options = nlohmann::json::object();
 };
 
 // Called with the fraction done, from one thread, often enough for a progress bar.

@@ -194,6 +194,13 @@ Scene parseScene(const nlohmann::json& json, const std::string& file,
     scene.step_voxels = render->number("step", 0.5, 1e-3, 64.0);
     scene.termination = render->number("early_termination", 0.01, 0.0, 1.0);
     scene.bins = render->integer("bins", 1024, 2, 1 << 20);
+    if (auto options = render->find("options")) {
+      if (!options->isObject()) options->fail("expected {\"backend\": {\"key\": value}}");
+      for (const std::string& backend : options->keys())
+        if (!options->at(backend).isObject())
+          options->at(backend).fail("expected an object of options for this backend");
+      scene.renderer_options = options->json();
+    }
     render->rejectUnknownKeys();
   }
   if (auto shading = root.find("shading")) {

@@ -45,6 +45,7 @@ struct Scene {
   double step_voxels = 0.5;         // sample spacing in units of the smallest voxel spacing
   double termination = 0.01;        // early ray termination when max T < this; 0 = off
   int bins = 1024;
+  nlohmann::json renderer_options = nlohmann::json::object();  // render.options, per backend
   Shading shading;
   std::optional<Spectrum> background;  // reflectance of a backdrop; empty = black
   std::string model = "factor:6";      // rgb, factor:k, spectral:n, or auto

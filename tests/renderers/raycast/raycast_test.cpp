@@ -25,8 +25,9 @@ LightIndependentImage renderScene(const Scene& scene, const ColourModel& model,
   options.bins = scene.bins;
   options.baked_light = baked;
   const ClassifiedVolume cv = classify(scene.volume, scene.transfer_function, model, options);
-  RenderRequest request{cv, scene.camera, scene.width, scene.height, scene.shading,
-                        scene.light_direction, scene.termination, skipping};
+  RenderRequest request{cv,           scene.camera,          scene.width,
+                        scene.height, scene.shading,         scene.light_direction,
+                        scene.termination, skipping,         scene.renderer_options};
   return renderer.render(request, nullptr);
 }
 
