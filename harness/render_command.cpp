@@ -9,6 +9,7 @@
 #include <nlohmann/json.hpp>
 
 #include "harness/image_files.h"
+#include "harness/interrupt.h"
 #include "harness/progress.h"
 #include "renderers/core/classification.h"
 #include "renderers/core/scene.h"
@@ -88,6 +89,8 @@ int runRender(const RenderOptions& o) {
   }
   const double render_ms = msSince(t_render);
 
+  // From here on files are written: Ctrl-C waits for them to be complete (issue 9).
+  const WritingOutputs writing;
   std::error_code mkdir_error;
   fs::create_directories(o.out_dir, mkdir_error);
   if (mkdir_error)

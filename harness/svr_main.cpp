@@ -5,8 +5,13 @@
 #include <exception>
 #include <fmt/ranges.h>
 
+#include "harness/design_command.h"
 #include "harness/info_command.h"
+#include "harness/interrupt.h"
+#include "harness/compare_command.h"
+#include "harness/demo_command.h"
 #include "harness/model_error_command.h"
+#include "harness/sweep_command.h"
 #include "harness/relight_command.h"
 #include "harness/render_command.h"
 #include "renderers/core/memory_budget.h"
@@ -120,14 +125,23 @@ int main(int argc, char** argv) {
   render_command->add_flag("--half", render.half, "store the light-independent EXR as half floats");
   render_command->add_option("--option", render.options,
                              "backend option BACKEND.KEY=VALUE (repeatable), e.g. splat.mode=sheet");
+  std::string splat_mode;
+  render_command->add_option("--splat-mode", splat_mode, "splat compositing: sheet or direct")
+      ->check(CLI::IsMember({"sheet", "direct"}));
   render_command->add_option("--memory-budget", render_budget, "most bytes of voxels to load");
   render_command->add_flag("-q,--quiet", render.quiet, "no progress bar or summary");
   render_command->callback([&] {
     render.data_dir = data_dir;
+    if (!splat_mode.empty()) render.options.push_back("splat.mode=" + splat_mode);
     if (!render_budget.empty())
       render.memory_budget = svr::parseByteSize(render_budget, "--memory-budget");
     if ((render.width && *render.width < 1) || (render.height && *render.height < 1))
       throw svr::Error("render: --width and --height must be ≥ 1");
+    // The scene file's image.width/height range, checked before any loading or rendering.
+    for (const auto& [flag, size] : {std::pair{"--width", render.width}, {"--height", render.height}})
+      if (size && *size > 16384)
+        throw svr::Error(fmt::format("render: {} {} is outside 1..16384", flag, *size));
+    svr::installInterruptHandler();
     svr::runRender(render);
   });
 
@@ -150,6 +164,79 @@ int main(int argc, char** argv) {
     svr::runRelight(relight);
   });
 
+  // ---- svr compare / sweep / demo (the harness) -----------------------------------------------
+  svr::CompareOptions compare;
+  int compare_status = 0;
+  auto* compare_command = app.add_subcommand(
+      "compare", "reference and every backend × model on one scene: ΔE2000, times, report");
+  compare_command->add_option("SCENE", compare.scene, "scene JSON")->required();
+  compare_command->add_option("--renderers", compare.renderers, "backends (default: all)")
+      ->delimiter(',');
+  compare_command->add_option("--models", compare.models,
+                              "models (default rgb,factor:3,factor:4,factor:6,factor:8,spectral:31)")
+      ->delimiter(',');
+  compare_command->add_option("--variant", compare.variants,
+                              "extra run with a backend option, BACKEND.KEY=VALUE (repeatable)");
+  compare_command->add_option("--out", compare.out_dir, "report folder")->required();
+  compare_command->add_option("--width", compare.width, "image width (default: the scene's)");
+  compare_command->add_option("--height", compare.height, "image height (default: the scene's)");
+  compare_command->add_flag("-q,--quiet", compare.quiet, "no progress bar or table");
+  compare_command->callback([&] {
+    compare.data_dir = data_dir;
+    compare_status = svr::runCompare(compare);
+  });
+
+  svr::SweepOptions sweep;
+  auto* sweep_command = app.add_subcommand(
+      "sweep", "ΔE2000 and time against one parameter, with jumps and blow-ups flagged");
+  sweep_command->add_option("SCENE", sweep.scene, "scene JSON")->required();
+  sweep_command->add_option("--param", sweep.param,
+                            "NAME=FROM:TO:STEP; NAME: azimuth, elevation, zoom, step, k, depth "
+                            "or BACKEND.KEY")
+      ->required();
+  sweep_command->add_option("--renderers", sweep.renderers, "backends (default: all)")
+      ->delimiter(',');
+  sweep_command->add_option("--model", sweep.model, "colour model")->capture_default_str();
+  sweep_command->add_option("--size", sweep.width, "image width and height")->capture_default_str();
+  sweep_command->add_option("--out", sweep.out_dir, "output folder")->required();
+  sweep_command->add_flag("-q,--quiet", sweep.quiet, "no progress bar");
+  sweep_command->callback([&] {
+    sweep.data_dir = data_dir;
+    sweep.height = sweep.width;
+    svr::runSweep(sweep);
+  });
+
+  svr::DemoOptions demo;
+  int demo_status = 0;
+  auto* demo_command = app.add_subcommand(
+      "demo", "compare every backend and model on the default scenes; writes report.html");
+  demo_command->add_option("--out", demo.out_dir, "report folder")->capture_default_str();
+  demo_command->add_flag("--quick", demo.quick, "fewer models, smaller images (for CI)");
+  demo_command->add_flag("-q,--quiet", demo.quiet, "no progress bars");
+  demo_command->callback([&] {
+    demo.data_dir = data_dir;
+    demo_status = svr::runDemo(demo);
+  });
+  // ---- end of the harness ---------------------------------------------------------------------
+
+  // ---- svr design PALETTE --out DIR (the spectral design tool) --------------------------------
+  svr::DesignCommandOptions design;
+  auto* design_command = app.add_subcommand(
+      "design", "design lights and materials from a palette of target colours");
+  design_command->add_option("PALETTE", design.palette, "design palette JSON (data/palettes/)")
+      ->required()
+      ->check(CLI::ExistingFile);
+  design_command->add_option("--out", design.out_dir, "output folder")->required();
+  design_command->add_flag("--strict", design.strict, "exit with status 2 when a cell misses");
+  design_command->add_flag("--no-plots", [&](std::int64_t) { design.plots = false; },
+                           "skip spectra.png (matplotlib)");
+  design_command->add_flag("-q,--quiet", design.quiet, "no table");
+  design_command->callback([&] {
+    design.data_dir = data_dir;
+    svr::runDesign(design);
+  });
+  // ---- end of svr design ----------------------------------------------------------------------
+
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -157,9 +244,12 @@ int main(int argc, char** argv) {
   } catch (const svr::Error& e) {
     fmt::print(stderr, "svr: error: {}\n", e.what());
     return 2;
+  } catch (const svr::Interrupted&) {
+    fmt::print(stderr, "svr: interrupted\n");
+    return svr::kInterruptedExitCode;
   } catch (const std::exception& e) {
     fmt::print(stderr, "svr: internal error: {}\n", e.what());
     return 3;
   }
-  return 0;
+  return compare_status != 0 ? compare_status : demo_status;
 }

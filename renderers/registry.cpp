@@ -7,6 +7,8 @@
 #include <utility>
 
 #include "renderers/raycast/raycast_renderer.h"
+#include "renderers/shearwarp/shearwarp_renderer.h"
+#include "renderers/splat/splat_renderer.h"
 #include "spectral/error.h"
 
 namespace svr {
@@ -17,6 +19,8 @@ using Factory = std::function<std::unique_ptr<Renderer>()>;
 const std::vector<std::pair<std::string, Factory>>& registry() {
   static const std::vector<std::pair<std::string, Factory>> entries{
       {"raycast", [] { return std::make_unique<RaycastRenderer>(); }},
+      {"shearwarp", [] { return std::make_unique<ShearWarpRenderer>(); }},
+      {"splat", [] { return std::make_unique<SplatRenderer>(); }},
   };
   return entries;
 }

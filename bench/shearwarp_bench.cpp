@@ -1,0 +1,110 @@
+// Shear-warp against raycast in one run, engine scene (data/scenes/engine.json, its camera), at
+// 512² and 800², rgb and factor:6:
+//   Shearwarp/engine/<size>/<model>   time per frame with the encoding already built
+//   Raycast/engine/<size>/<model>     the reference backend, same request
+//   ShearwarpEncode/engine/<model>    run-length encoding for the view's principal axis
+//   Classify/engine/<model>           classification (shared by both backends)
+// so per-frame time is split from classification and encoding, and the speed ratio is read from
+// one run (python3 bench/ratios.py out.json).
+#include <benchmark/benchmark.h>
+#include <fmt/format.h>
+
+#include "renderers/core/classification.h"
+#include "renderers/core/scene.h"
+#include "renderers/core/scene_model.h"
+#include "renderers/raycast/raycast_renderer.h"
+#include "renderers/shearwarp/rle_volume.h"
+#include "renderers/shearwarp/shear_warp_factorization.h"
+#include "renderers/shearwarp/shearwarp_renderer.h"
+#include "spectral/colorimetry.h"
+#include "spectral/data_dir.h"
+
+namespace svr {
+namespace {
+
+struct Setup {
+  SpectrumLibrary library = SpectrumLibrary::load(defaultDataDir(), WavelengthGrid::standard());
+  Observer observer = Observer::cie1931(defaultDataDir(), WavelengthGrid::standard());
+  Scene scene = loadScene(defaultDataDir() + "/scenes/engine.json", library);
+};
+
+const Setup& setup() {
+  static const Setup s;
+  return s;
+}
+
+ClassifiedVolume classifyEngine(const ColourModel& model) {
+  const Setup& s = setup();
+  ClassificationOptions options;
+  options.step_world = s.scene.stepWorld();
+  options.bins = s.scene.bins;
+  return classify(s.scene.volume, s.scene.transfer_function, model, options);
+}
+
+RenderRequest engineRequest(const ClassifiedVolume& cv, int size) {
+  const Scene& scene = setup().scene;
+  return {cv,   scene.camera,      size, size, scene.shading, scene.light_direction,
+          scene.termination, true, scene.renderer_options};
+}
+
+void frame(benchmark::State& state, int size, const std::string& model_name, bool shearwarp) {
+  const SceneModel model = makeSceneModel(model_name, setup().scene, setup().observer);
+  const ClassifiedVolume cv = classifyEngine(*model.model);
+  const RenderRequest request = engineRequest(cv, size);
+  const shearwarp::RleVolume encoded(cv);
+  encoded.buildAll();
+  const ShearWarpRenderer sw;
+  const RaycastRenderer rc;
+  for (auto _ : state) {
+    auto image = shearwarp ? sw.render(encoded, request, nullptr) : rc.render(request, nullptr);
+    benchmark::DoNotOptimize(image.planeFloat(0).data());
+  }
+  state.SetItemsProcessed(state.iterations());
+}
+
+void encode(benchmark::State& state, const std::string& model_name) {
+  const SceneModel model = makeSceneModel(model_name, setup().scene, setup().observer);
+  const ClassifiedVolume cv = classifyEngine(*model.model);
+  const auto view = shearwarp::factorizeView(setup().scene.camera, 512, 512, cv.dims, cv.spacing, 1);
+  for (auto _ : state) {
+    const shearwarp::RleVolume encoded(cv);
+    benchmark::DoNotOptimize(&encoded.encoding(view.axis));
+  }
+}
+
+void classifyOnly(benchmark::State& state, const std::string& model_name) {
+  const SceneModel model = makeSceneModel(model_name, setup().scene, setup().observer);
+  for (auto _ : state) {
+    const ClassifiedVolume cv = classifyEngine(*model.model);
+    benchmark::DoNotOptimize(cv.alpha.data());
+  }
+}
+
+const bool registered = [] {
+  for (const char* model : {"rgb", "factor:6"}) {
+    for (int size : {512, 800})
+      for (bool sw : {true, false})
+        benchmark::RegisterBenchmark(
+            fmt::format("{}/engine/{}/{}", sw ? "Shearwarp" : "Raycast", size, model).c_str(),
+            frame, size, std::string(model), sw)
+            ->UseRealTime()
+            ->Unit(benchmark::kMillisecond)
+            ->MinTime(1.0);
+    benchmark::RegisterBenchmark(fmt::format("ShearwarpEncode/engine/{}", model).c_str(), encode,
+                                 std::string(model))
+        ->UseRealTime()
+        ->Unit(benchmark::kMillisecond)
+        ->MinTime(1.0);
+    benchmark::RegisterBenchmark(fmt::format("Classify/engine/{}", model).c_str(), classifyOnly,
+                                 std::string(model))
+        ->UseRealTime()
+        ->Unit(benchmark::kMillisecond)
+        ->MinTime(1.0);
+  }
+  return true;
+}();
+
+}  // namespace
+}  // namespace svr
+
+BENCHMARK_MAIN();

@@ -1,0 +1,43 @@
+#pragma once
+// `svr compare SCENE`: the reference and every backend × model on one scene; writes the report
+// folder (report.json, relit PNGs, ΔE2000 maps, speed_accuracy.png, report.html) and exits
+// non-zero when a tolerance is exceeded, naming the run, light, metric, value and tolerance.
+
+#include <string>
+#include <vector>
+
+#include "harness/comparison.h"
+
+namespace svr {
+
+struct CompareOptions {
+  std::string data_dir;
+  std::string scene;
+  std::vector<std::string> renderers;  // empty = every registered backend
+  std::vector<std::string> models;     // empty = rgb, factor:3, factor:4, factor:6, factor:8, spectral:31
+  std::vector<std::string> variants;   // extra runs "BACKEND.KEY=VALUE" (e.g. splat.mode=direct)
+  std::string out_dir;
+  int width = 0, height = 0;           // 0 = the scene's
+  bool charts = true;                  // run harness/report.py (matplotlib) for the PNG charts and HTML
+  bool quiet = false;
+};
+
+struct CompareSummary {
+  std::string scene;
+  std::vector<RunResult> runs;
+  std::vector<Exceedance> exceedances;
+  double reference_ms = 0.0;
+};
+
+// Runs every comparison and writes report.json and the images into out_dir (charts and HTML
+// too when options.charts). Throws svr::Error for bad input; tolerance misses are returned.
+CompareSummary runComparison(const CompareOptions& options);
+// The command: runComparison, a table on stdout, one line per exceedance; 0, or 1 on a miss.
+int runCompare(const CompareOptions& options);
+// Prints the summary table (backend × model: ms/frame, relight fps, mean ΔE2000, pass).
+void printSummaryTable(const CompareSummary& summary);
+
+// Runs harness/report.py on a report folder (charts, heat maps, report.html).
+void renderReportCharts(const std::string& out_dir);
+
+}  // namespace svr

@@ -1,0 +1,204 @@
+#include "harness/comparison.h"
+
+#include <fmt/format.h>
+
+#include <chrono>
+
+#include "renderers/core/classification.h"
+#include "renderers/core/scene_model.h"
+#include "renderers/registry.h"
+#include "spectral/componentwise_model.h"
+#include "spectral/error.h"
+#include "spectral/image_difference.h"
+#include "spectral/post_illumination.h"
+
+namespace svr {
+namespace {
+
+double msSince(std::chrono::steady_clock::time_point t0) {
+  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+}
+
+// Luminance-weighted transmittance per pixel under a light: Y of (l ⊙ T) over Y of l.
+std::vector<float> luminanceTransmittance(const LightIndependentImage& image,
+                                          const ColourModel& model, const Eigen::VectorXd& light) {
+  const int k = model.channels(), nt = image.transmittanceChannels();
+  Eigen::VectorXd weight = model.toXyz().row(1).transpose().cwiseProduct(light);
+  weight /= weight.sum();
+  std::vector<float> out(image.pixels(), 1.0f);
+  for (int y = 0; y < image.height(); ++y)
+    for (int x = 0; x < image.width(); ++x) {
+      double t = 0.0;
+      if (nt == 1) {
+        t = image.transmittance(0, x, y);
+      } else {
+        for (int c = 0; c < k && c < nt; ++c) t += weight[c] * image.transmittance(c, x, y);
+      }
+      out[static_cast<std::size_t>(y) * image.width() + x] = static_cast<float>(t);
+    }
+  return out;
+}
+
+}  // namespace
+
+std::string RunSpec::label() const {
+  if (options.contains(renderer) && !options[renderer].empty())
+    return fmt::format("{} {} {}", renderer, model, options[renderer].dump());
+  return fmt::format("{} {}", renderer, model);
+}
+
+ComparisonSession::ComparisonSession(Scene scene, const std::string& data_dir)
+    : scene_(std::move(scene)),
+      library_(SpectrumLibrary::load(data_dir, WavelengthGrid::standard())),
+      observer_(Observer::cie1931(data_dir, WavelengthGrid::standard())) {
+  for (const auto& l : scene_.lights)
+    illuminations_.push_back({l.name, observer_.unitLuminance(l.spectrum)});
+  for (const auto& mix : scene_.mixes) {
+    Spectrum s = Spectrum::constant(observer_.grid(), 0.0);
+    for (const auto& [index, w] : mix.weights) s = s + illuminations_[index].spectrum * w;
+    illuminations_.push_back({fmt::format("mix {}", mix.name), s});
+  }
+  // The reference: full-spectral raycast, fine step, every sample composited.
+  Rendered ref = render("raycast", fmt::format("spectral:{}", observer_.grid().count),
+                        nlohmann::json::object(), std::min(scene_.step_voxels, 0.25), 0.0);
+  reference_model_ = std::move(ref.model);
+  reference_ = std::move(ref.image);
+  reference_ms_ = ref.render_ms;
+}
+
+ComparisonSession::Rendered ComparisonSession::render(const std::string& renderer_name,
+                                                      const std::string& model,
+                                                      const nlohmann::json& options,
+                                                      double step_voxels, double termination) {
+  const auto renderer = makeRenderer(renderer_name);
+  Scene scene = scene_;
+  scene.step_voxels = step_voxels;
+  const auto t_classify = std::chrono::steady_clock::now();
+  SceneModel chosen = makeSceneModel(model, scene, observer_);
+  ClassificationOptions copts;
+  copts.step_world = scene.stepWorld();
+  copts.bins = scene.bins;
+  const ClassifiedVolume cv = classify(scene.volume, scene.transfer_function, *chosen.model, copts);
+  const double classify_ms = msSince(t_classify);
+  nlohmann::json merged = scene.renderer_options;
+  for (const auto& [backend, values] : options.items())
+    for (const auto& [key, value] : values.items()) merged[backend][key] = value;
+  RenderRequest request{cv,           scene.camera,  scene.width,          scene.height,
+                        scene.shading, scene.light_direction, termination, true,
+                        merged};
+  const auto t_render = std::chrono::steady_clock::now();
+  LightIndependentImage image = renderer->render(request, nullptr);
+  return {std::move(chosen.model), chosen.description, std::move(image), classify_ms,
+          msSince(t_render)};
+}
+
+RunResult ComparisonSession::run(const RunSpec& spec) {
+  Rendered r = render(spec.renderer, spec.model, spec.options, scene_.step_voxels,
+                      scene_.termination);
+  const Rendered* raycast = nullptr;
+  if (spec.renderer != "raycast") {
+    auto it = raycast_by_model_.find(spec.model);
+    if (it == raycast_by_model_.end())
+      it = raycast_by_model_
+               .emplace(spec.model, render("raycast", spec.model, nlohmann::json::object(),
+                                           scene_.step_voxels, scene_.termination))
+               .first;
+    raycast = &it->second;
+  }
+  RunResult result;
+  result.spec = spec;
+  result.model_name = r.model->name();
+  result.model_description = r.description;
+  result.k = r.model->channels();
+  result.classify_ms = r.classify_ms;
+  result.render_ms = r.render_ms;
+
+  PostIlluminator post(*r.model);
+  if (scene_.background) post.setBackground(r.model->project(*scene_.background));
+  const auto ref_light_t = [&](const Spectrum& l) {
+    return luminanceTransmittance(reference_, *reference_model_, reference_model_->project(l));
+  };
+  double relight_total = 0.0;
+  for (const auto& ill : illuminations_) {
+    LightResult lr;
+    lr.light = ill.name;
+    const Xyz white = observer_.xyz(ill.spectrum);
+    const Eigen::VectorXd coeffs = r.model->project(ill.spectrum);
+    lr.relit.resize(3 * r.image.pixels());
+    // Best of a few: a relight is short enough that one sample mostly measures thread wake-up.
+    double best = INFINITY;
+    for (int repeat = 0; repeat < 5; ++repeat) {
+      const auto t0 = std::chrono::steady_clock::now();
+      post.setLight(coeffs);
+      post.relightSrgb8(r.image, lr.relit);
+      best = std::min(best, msSince(t0));
+    }
+    relight_total += best;
+    const ImageDifference vs_ref =
+        compareRelit(r.image, *r.model, reference_, *reference_model_, ill.spectrum, white);
+    lr.vs_reference = vs_ref.stats;
+    lr.error_map = vs_ref.map;
+    if (raycast)
+      lr.vs_raycast =
+          compareRelit(r.image, *r.model, raycast->image, *raycast->model, ill.spectrum, white)
+              .stats;
+    const auto t_run = luminanceTransmittance(r.image, *r.model, coeffs);
+    const auto t_ref = ref_light_t(ill.spectrum);
+    double sum = 0.0;
+    std::size_t n = 0;
+    for (std::size_t i = 0; i < t_run.size(); ++i)
+      if (std::min(t_run[i], t_ref[i]) <= 0.98f) sum += std::abs(t_run[i] - t_ref[i]), ++n;
+    lr.transmittance_error = n ? sum / n : 0.0;
+    result.lights.push_back(std::move(lr));
+  }
+  result.relight_ms = relight_total / std::max<std::size_t>(illuminations_.size(), 1);
+  return result;
+}
+
+std::vector<Tolerance> tolerancesFor(const std::string& renderer, const nlohmann::json& scene) {
+  // Defaults. Against the spectral reference the colour model's own error counts too (rgb and
+  // factor:3–4 under spiky lights reach mean 6–12); against the raycaster with the same model
+  // only the algorithm's error counts, and the raycaster is that reference itself. The splat
+  // bound is what it measures today on the frog label map (mean 7.2 at 96², see issue 5), not a
+  // goal.
+  std::map<std::string, double> limits{{"de_mean", 15.0}, {"de_p95", 40.0}};
+  if (renderer != "raycast") {
+    limits["de_vs_raycast_mean"] = renderer == "splat" ? 8.0 : 3.0;
+    limits["de_vs_raycast_p95"] = renderer == "splat" ? 20.0 : 12.0;
+  }
+  auto apply = [&](const nlohmann::json& table) {
+    if (!table.is_object()) return;
+    for (auto& [metric, limit] : limits)
+      if (table.contains(metric) && table[metric].is_number()) limit = table[metric].get<double>();
+  };
+  apply(scene);
+  if (scene.is_object() && scene.contains(renderer)) apply(scene[renderer]);
+  std::vector<Tolerance> out;
+  for (const auto& [metric, limit] : limits) out.push_back({metric, limit});
+  return out;
+}
+
+std::string Exceedance::str() const {
+  return fmt::format("run '{}' light '{}': {} = {:.3f} exceeds the tolerance {}", run, light,
+                     metric, value, tolerance);
+}
+
+std::vector<Exceedance> checkTolerances(const RunResult& run, const nlohmann::json& scene) {
+  std::vector<Exceedance> out;
+  for (const auto& tol : tolerancesFor(run.spec.renderer, scene))
+    for (const auto& l : run.lights) {
+      double value = 0.0;
+      if (tol.metric == "de_mean") value = l.vs_reference.mean;
+      else if (tol.metric == "de_p95") value = l.vs_reference.p95;
+      else if (tol.metric == "de_vs_raycast_mean" && l.vs_raycast) value = l.vs_raycast->mean;
+      else if (tol.metric == "de_vs_raycast_p95" && l.vs_raycast) value = l.vs_raycast->p95;
+      const bool finite = l.vs_reference.finite && (!l.vs_raycast || l.vs_raycast->finite);
+      if (!finite || value > tol.limit)
+        out.push_back({run.spec.label(), l.light,
+                       finite ? tol.metric : fmt::format("{} (non-finite)", tol.metric), value,
+                       tol.limit});
+    }
+  return out;
+}
+
+}  // namespace svr

@@ -1,0 +1,101 @@
+#pragma once
+// The comparison at the heart of the harness (DESIGN §6): one scene rendered by the reference
+// (raycast, spectral:81, step ≤ 0.25 voxel, no early termination) and by any backend × colour
+// model; every run relit under every scene light and mix and measured against the reference
+// (colour-model plus algorithm error) and against the raycaster with the same model (algorithm
+// error alone), with timings. compare, sweep and demo are built on it.
+
+#include <map>
+#include <memory>
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "renderers/core/scene.h"
+#include "spectral/colorimetry.h"
+#include "spectral/colour_model.h"
+#include "spectral/light_independent_image.h"
+#include "spectral/model_error.h"
+
+namespace svr {
+
+struct RunSpec {
+  std::string renderer = "raycast";
+  std::string model = "factor:6";
+  nlohmann::json options = nlohmann::json::object();  // backend options, keyed by backend
+  std::string label() const;                           // "splat factor:6 {mode: direct}"
+};
+
+struct LightResult {
+  std::string light;
+  ErrorStats vs_reference;
+  std::optional<ErrorStats> vs_raycast;  // empty for the raycaster itself
+  double transmittance_error = 0.0;      // mean |ΔT| (luminance-weighted) over covered pixels
+  std::vector<float> error_map;          // ΔE2000 against the reference, per pixel
+  std::vector<std::uint8_t> relit;       // sRGB8
+};
+
+struct RunResult {
+  RunSpec spec;
+  std::string model_name, model_description;
+  int k = 0;
+  double classify_ms = 0.0, render_ms = 0.0, relight_ms = 0.0;  // relight: per light
+  std::vector<LightResult> lights;
+};
+
+// A named light or mix of the scene, as a unit-luminance spectrum.
+struct SceneIllumination {
+  std::string name;
+  Spectrum spectrum;
+};
+
+class ComparisonSession {
+ public:
+  ComparisonSession(Scene scene, const std::string& data_dir);
+
+  const Scene& scene() const { return scene_; }
+  const std::vector<SceneIllumination>& illuminations() const { return illuminations_; }
+  double referenceMs() const { return reference_ms_; }
+  const LightIndependentImage& reference() const { return reference_; }
+  const ColourModel& referenceModel() const { return *reference_model_; }
+
+  // Renders and measures one run. Throws svr::Error for unknown renderers or bad options.
+  RunResult run(const RunSpec& spec);
+
+ private:
+  struct Rendered {
+    std::unique_ptr<ColourModel> model;
+    std::string description;
+    LightIndependentImage image;
+    double classify_ms, render_ms;
+  };
+  Rendered render(const std::string& renderer, const std::string& model,
+                  const nlohmann::json& options, double step_voxels, double termination);
+
+  Scene scene_;
+  SpectrumLibrary library_;
+  Observer observer_;
+  std::vector<SceneIllumination> illuminations_;
+  std::unique_ptr<ColourModel> reference_model_;
+  LightIndependentImage reference_;
+  double reference_ms_ = 0.0;
+  std::map<std::string, Rendered> raycast_by_model_;  // for the algorithm-only error
+};
+
+// Tolerances: one table of per-backend defaults, overridden by the scene's "tolerances"
+// ({"de_mean": 8, "shearwarp": {"de_vs_raycast_mean": 3}}).
+struct Tolerance {
+  std::string metric;  // "de_mean", "de_p95", "de_vs_raycast_mean", "de_vs_raycast_p95"
+  double limit;
+};
+std::vector<Tolerance> tolerancesFor(const std::string& renderer, const nlohmann::json& scene);
+
+struct Exceedance {
+  std::string run, light, metric;
+  double value, tolerance;
+  std::string str() const;
+};
+std::vector<Exceedance> checkTolerances(const RunResult& run, const nlohmann::json& scene);
+
+}  // namespace svr

@@ -1,0 +1,48 @@
+#include "harness/demo_command.h"
+
+#include <fmt/format.h>
+
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+
+#include "harness/compare_command.h"
+#include "spectral/error.h"
+
+namespace svr {
+namespace fs = std::filesystem;
+
+int runDemo(const DemoOptions& o) {
+  const std::vector<std::string> scenes{"engine", "frog", "phantom"};
+  nlohmann::json demo = {{"scenes", scenes}, {"quick", o.quick}};
+  std::vector<CompareSummary> summaries;
+  for (const auto& name : scenes) {
+    CompareOptions c;
+    c.data_dir = o.data_dir;
+    c.scene = (fs::path(o.data_dir) / "scenes" / (name + ".json")).string();
+    c.out_dir = (fs::path(o.out_dir) / name).string();
+    c.models = o.quick ? std::vector<std::string>{"rgb", "factor:6"}
+                       : std::vector<std::string>{"rgb", "factor:4", "factor:6", "factor:8",
+                                                  "spectral:31"};
+    c.width = c.height = o.quick ? 128 : 256;
+    c.charts = false;  // one combined page below
+    c.quiet = o.quiet;
+    summaries.push_back(runComparison(c));
+  }
+  {
+    std::ofstream f(fs::path(o.out_dir) / "demo.json");
+    f << demo.dump(1) << "\n";
+  }
+  renderReportCharts(o.out_dir);
+  bool pass = true;
+  for (const auto& s : summaries) {
+    printSummaryTable(s);
+    fmt::print("\n");
+    for (const auto& m : s.exceedances) fmt::print(stderr, "svr: tolerance: {}\n", m.str());
+    pass = pass && s.exceedances.empty();
+  }
+  fmt::print("report: {}\n", (fs::path(o.out_dir) / "report.html").string());
+  return pass ? 0 : 1;
+}
+
+}  // namespace svr

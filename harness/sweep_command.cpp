@@ -1,0 +1,177 @@
+#include "harness/sweep_command.h"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <glm/geometric.hpp>
+
+#include "harness/compare_command.h"
+#include "harness/comparison.h"
+#include "harness/progress.h"
+#include "renderers/registry.h"
+#include "spectral/error.h"
+
+namespace svr {
+namespace fs = std::filesystem;
+
+namespace {
+
+struct ParamRange {
+  std::string name;
+  double from, to, step;
+};
+
+ParamRange parseRange(const std::string& text) {
+  const auto eq = text.find('=');
+  ParamRange r;
+  int read = 0;
+  if (eq != std::string::npos) {
+    r.name = text.substr(0, eq);
+    read = std::sscanf(text.c_str() + eq + 1, "%lf:%lf:%lf", &r.from, &r.to, &r.step);
+  }
+  if (eq == std::string::npos || read != 3 || r.name.empty())
+    throw Error(fmt::format("--param '{}': expected NAME=FROM:TO:STEP, e.g. azimuth=0:90:1", text));
+  if (!std::isfinite(r.from) || !std::isfinite(r.to) || !(r.step > 0) || r.to < r.from)
+    throw Error(fmt::format("--param '{}': needs FROM ≤ TO and STEP > 0", text));
+  if ((r.to - r.from) / r.step > 1000)
+    throw Error(fmt::format("--param '{}': more than 1000 values", text));
+  static const char* known[] = {"azimuth", "elevation", "zoom", "step", "k", "depth"};
+  if (std::find(std::begin(known), std::end(known), r.name) == std::end(known) &&
+      r.name.find('.') == std::string::npos)
+    throw Error(fmt::format("--param '{}': unknown parameter '{}'; expected azimuth, elevation, "
+                            "zoom, step, k, depth or BACKEND.KEY",
+                            text, r.name));
+  return r;
+}
+
+// The scene (and model, and options) at one value of the parameter.
+void apply(const ParamRange& p, double v, const Scene& base, Scene& s, std::string& model,
+           nlohmann::json& options) {
+  const glm::dvec3 offset = base.camera.eye - base.camera.target;
+  const double distance = glm::length(offset);
+  const double elevation = std::asin(std::clamp(offset.z / distance, -1.0, 1.0)) * 180.0 / M_PI;
+  const double azimuth = std::atan2(offset.y, offset.x) * 180.0 / M_PI;
+  if (p.name == "azimuth" || p.name == "elevation") {
+    s.camera = Camera::orbit(p.name == "azimuth" ? v : azimuth,
+                             p.name == "elevation" ? v : elevation, distance,
+                             base.camera.fov_degrees, base.camera.ortho_height);
+  } else if (p.name == "zoom") {
+    if (!(v > 0)) throw Error(fmt::format("--param zoom: {} must be > 0", v));
+    s.camera.ortho_height = base.camera.ortho_height / v;
+    if (!base.camera.orthographic())
+      s.camera.fov_degrees = 2.0 * std::atan(std::tan(base.camera.fov_degrees * M_PI / 360.0) / v) * 180.0 / M_PI;
+  } else if (p.name == "step") {
+    if (!(v > 0)) throw Error(fmt::format("--param step: {} must be > 0", v));
+    s.step_voxels = v;
+  } else if (p.name == "k") {
+    model = fmt::format("factor:{}", static_cast<int>(std::lround(v)));
+  } else if (p.name == "depth") {
+    if (!(v >= 0)) throw Error(fmt::format("--param depth: {} must be ≥ 0", v));
+    for (size_t i = 0; i < s.transfer_function.materials.size(); ++i)
+      s.transfer_function.materials[i].extinction = base.transfer_function.materials[i].extinction * v;
+  } else {
+    const auto dot = p.name.find('.');
+    options[p.name.substr(0, dot)][p.name.substr(dot + 1)] = v;
+  }
+}
+
+}  // namespace
+
+SweepResult runSweepStudy(const SweepOptions& o) {
+  const ParamRange range = parseRange(o.param);
+  const auto library = SpectrumLibrary::load(o.data_dir, WavelengthGrid::standard());
+  Scene base = loadScene(o.scene, library);
+  base.width = o.width;
+  base.height = o.height;
+  const std::vector<std::string> renderers = o.renderers.empty() ? rendererNames() : o.renderers;
+  for (const auto& r : renderers) makeRenderer(r);
+  SweepResult result;
+  result.param = range.name;
+  for (double v = range.from; v <= range.to + 1e-9 * std::max(1.0, std::abs(range.to)); v += range.step)
+    result.values.push_back(v);
+  for (const auto& r : renderers) result.curves.push_back({r, {}, {}, {}});
+
+  Progress progress("sweep", static_cast<int>(result.values.size()), o.quiet);
+  for (double v : result.values) {
+    Scene s = base;
+    std::string model = o.model;
+    nlohmann::json options = nlohmann::json::object();
+    apply(range, v, base, s, model, options);
+    ComparisonSession session(s, o.data_dir);
+    for (auto& curve : result.curves) {
+      const RunResult run = session.run({curve.renderer, model, options});
+      double de = 0.0;
+      bool finite = true;
+      for (const auto& l : run.lights) {
+        de += l.vs_reference.mean / run.lights.size();
+        finite = finite && l.vs_reference.finite;
+      }
+      curve.de_mean.push_back(finite ? de : NAN);
+      curve.ms.push_back(run.render_ms);
+    }
+    progress.advance(fmt::format("{} = {}", range.name, v));
+  }
+
+  // Flags: non-finite values, blow-ups (mean ΔE2000 > 50), and jumps (a change between
+  // neighbouring values more than 4× the median change and above 0.5).
+  for (auto& curve : result.curves) {
+    std::vector<double> steps;
+    for (size_t i = 1; i < curve.de_mean.size(); ++i)
+      if (std::isfinite(curve.de_mean[i]) && std::isfinite(curve.de_mean[i - 1]))
+        steps.push_back(std::abs(curve.de_mean[i] - curve.de_mean[i - 1]));
+    std::vector<double> sorted = steps;
+    std::sort(sorted.begin(), sorted.end());
+    const double median = sorted.empty() ? 0.0 : sorted[sorted.size() / 2];
+    for (size_t i = 0; i < curve.de_mean.size(); ++i) {
+      const double v = result.values[i], de = curve.de_mean[i];
+      if (!std::isfinite(de)) curve.flags.push_back(fmt::format("non-finite at {}", v));
+      else if (de > 50) curve.flags.push_back(fmt::format("blow-up at {} (mean ΔE2000 {:.1f})", v, de));
+      if (i > 0 && std::isfinite(de) && std::isfinite(curve.de_mean[i - 1])) {
+        const double jump = std::abs(de - curve.de_mean[i - 1]);
+        if (jump > 0.5 && jump > 4 * median)
+          curve.flags.push_back(fmt::format("jump at {} ({:.2f} → {:.2f})", v,
+                                            curve.de_mean[i - 1], de));
+      }
+    }
+  }
+
+  std::error_code ec;
+  fs::create_directories(o.out_dir, ec);
+  if (ec) throw Error(fmt::format("--out {}: cannot create the folder: {}", o.out_dir, ec.message()));
+  nlohmann::json j = {{"scene", o.scene}, {"param", range.name}, {"values", result.values},
+                      {"model", o.model}};
+  j["renderers"] = nlohmann::json::array();
+  for (const auto& c : result.curves) {
+    nlohmann::json de = nlohmann::json::array();
+    for (double d : c.de_mean) de.push_back(std::isfinite(d) ? nlohmann::json(d) : nlohmann::json());
+    j["renderers"].push_back({{"renderer", c.renderer}, {"de_mean", de}, {"ms", c.ms}, {"flags", c.flags}});
+  }
+  const fs::path path = fs::path(o.out_dir) / "sweep.json";
+  {
+    std::ofstream f(path.string() + ".tmp");
+    f << j.dump(1) << "\n";
+  }
+  fs::rename(path.string() + ".tmp", path);
+  if (o.charts) renderReportCharts(o.out_dir);
+  return result;
+}
+
+int runSweep(const SweepOptions& o) {
+  const SweepResult r = runSweepStudy(o);
+  if (!o.quiet) {
+    for (const auto& c : r.curves) {
+      const auto worst = std::max_element(c.de_mean.begin(), c.de_mean.end());
+      fmt::print("{}: {} values of {}; worst mean ΔE2000 {:.3f} at {}\n", c.renderer,
+                 r.values.size(), r.param, worst == c.de_mean.end() ? NAN : *worst,
+                 worst == c.de_mean.end() ? NAN : r.values[worst - c.de_mean.begin()]);
+      for (const auto& f : c.flags) fmt::print("  flag: {}\n", f);
+    }
+    fmt::print("sweep: {}\n", (fs::path(o.out_dir) / "sweep.json").string());
+  }
+  return 0;
+}
+
+}  // namespace svr

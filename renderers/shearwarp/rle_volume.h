@@ -1,0 +1,104 @@
+#pragma once
+// Run-length encoded classified voxels for shear-warp (Lacroute & Levoy 1994, §4): one encoding
+// per principal axis, built once per classified volume (i.e. per transfer function, model and
+// step) and reused for every view whose principal axis it is.
+//
+// For principal axis c the volume is cut into slices k along c; a slice has voxel rows j along
+// axis_j, each row running along axis_i. Shear-warp samples bilinearly inside a slice, so a
+// sample lies in one 2×2 *cell* (voxels i..i+1 × j..j+1). A cell is transparent when no value
+// bilinearly interpolated from its four voxels can classify to a non-zero opacity (scalar
+// volumes: the opacity table over the corners' value range; label maps: all four labels
+// transparent). The encoding stores, per cell row, the runs of non-transparent cells (the
+// transparent runs are the gaps between them and are never visited), and per voxel row the
+// voxel records (value or label, and the precomputed world-space gradient of the shading field)
+// of the span of voxels that non-transparent cells touch. Transparent space costs nothing.
+
+#include <array>
+#include <cstdint>
+#include <memory>
+#include <mutex>
+#include <span>
+#include <vector>
+
+#include "renderers/core/classification.h"
+
+namespace svr::shearwarp {
+
+struct VoxelRecord {
+  float value;        // the voxel's value (label maps: its label number)
+  float gradient[3];  // ∇ of the shading field, world units, central differences (as raycast)
+};
+
+struct CellRun {
+  std::int32_t begin, end;  // non-transparent cells [begin, end) of one cell row
+};
+
+struct RowSpan {
+  std::int32_t lo = 0, count = 0;  // voxels lo .. lo + count − 1 of the row are stored
+  std::size_t offset = 0;          // first record of the row in the slice's records
+};
+
+struct SliceEncoding {
+  std::vector<std::int32_t> run_offsets;  // n_j: cell row j's runs are [off[j], off[j + 1])
+  std::vector<CellRun> runs;
+  std::vector<RowSpan> rows;  // n_j voxel rows
+  std::vector<VoxelRecord> records;
+};
+
+// The encoding for one principal axis.
+class AxisEncoding {
+ public:
+  AxisEncoding(const ClassifiedVolume& cv, int axis);
+
+  int axis() const { return axis_; }
+  int axisI() const { return axis_i_; }
+  int axisJ() const { return axis_j_; }
+  int slices() const { return n_k_; }
+  int rowLength() const { return n_i_; }  // voxels along axis_i
+  int rowCount() const { return n_j_; }   // voxel rows along axis_j
+
+  // Non-transparent cell runs of cell row j (0 .. rowCount − 2) of slice k.
+  std::span<const CellRun> runs(int k, int j) const {
+    const SliceEncoding& s = slices_[k];
+    return {s.runs.data() + s.run_offsets[j], s.runs.data() + s.run_offsets[j + 1]};
+  }
+  const RowSpan& row(int k, int j) const { return slices_[k].rows[j]; }
+  // Record of voxel i of row j; valid for lo ≤ i < lo + count.
+  const VoxelRecord& voxel(int k, int j, int i) const {
+    const SliceEncoding& s = slices_[k];
+    const RowSpan& r = s.rows[j];
+    return s.records[r.offset + (i - r.lo)];
+  }
+  std::size_t bytes() const;
+  std::size_t storedVoxels() const;
+
+ private:
+  int axis_, axis_i_, axis_j_, n_i_, n_j_, n_k_;
+  std::vector<SliceEncoding> slices_;
+};
+
+// The three encodings of one classified volume, each built on first use (thread-safe), so a
+// render pays only for the axis it needs and later views reuse it. Holds a reference: the
+// classified volume must outlive it.
+class RleVolume {
+ public:
+  explicit RleVolume(const ClassifiedVolume& cv);
+  const ClassifiedVolume& classified() const { return cv_; }
+  const AxisEncoding& encoding(int axis) const;
+  void buildAll() const;
+
+ private:
+  const ClassifiedVolume& cv_;
+  mutable std::array<std::once_flag, 3> once_;
+  mutable std::array<std::unique_ptr<AxisEncoding>, 3> axes_;
+};
+
+// Whether the cell with lower corner (x, y, z) in the plane of axes a and b (the other axis
+// fixed) can hold a non-transparent sample: the criterion the encoding uses, exposed so tests
+// can check the runs against it cell by cell.
+bool cellOccupied(const ClassifiedVolume& cv, std::span<const int> nonzero_prefix, int x, int y,
+                  int z, int a, int b);
+// nonzero_prefix[e] = number of entries below e with non-zero opacity (entries + 1 values).
+std::vector<int> nonzeroOpacityPrefix(const ClassifiedVolume& cv);
+
+}  // namespace svr::shearwarp

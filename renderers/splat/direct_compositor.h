@@ -1,0 +1,16 @@
+#pragma once
+// Composite-every-splat, the fast mode: each splat's whole line integral is composited front to
+// back in the order of the voxel centres' depths. Overlapping kernels are composited as if one
+// lay wholly in front of the other, so colours bleed, and the order flips (pops) as the view
+// turns; kept because the harness charts that difference against the sheet mode.
+
+#include "renderers/core/renderer.h"
+#include "renderers/splat/footprint.h"
+#include "renderers/splat/splat_list.h"
+
+namespace svr::splat {
+
+void compositeDirect(const SplatList& list, const FootprintTable& table, const Bands& bands,
+                     float termination, LightIndependentImage& image, const ProgressFn& progress);
+
+}  // namespace svr::splat

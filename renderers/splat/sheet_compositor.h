@@ -1,0 +1,18 @@
+#pragma once
+// Image-aligned sheet-buffer compositing (Mueller & Crawfis 1998), the correct mode: the
+// kernels are sliced by sheets parallel to the image plane, `thickness` apart in depth; within a
+// sheet the slices add up (optical depth and opacity-weighted colour per pixel), and the sheets
+// are composited front to back like the raycaster's samples, so overlapping kernels do not bleed
+// into each other and the result does not depend on the order within a sheet.
+
+#include "renderers/core/renderer.h"
+#include "renderers/splat/footprint.h"
+#include "renderers/splat/splat_list.h"
+
+namespace svr::splat {
+
+void compositeSheets(const SplatList& list, const FootprintTable& table, const Bands& bands,
+                     double thickness, float termination, LightIndependentImage& image,
+                     const ProgressFn& progress);
+
+}  // namespace svr::splat

@@ -1,0 +1,81 @@
+#pragma once
+// The splats of one render: every voxel that scatters or absorbs (a list built once per render,
+// so empty space costs nothing afterwards), classified at the voxel (pre-classification, as the
+// raycaster does for label maps), shaded with the same Phong model from the gradient at the
+// voxel, projected to the image and sorted front to back.
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include "renderers/core/classification.h"
+#include "renderers/core/renderer.h"
+#include "renderers/splat/footprint.h"
+
+namespace svr::splat {
+
+struct Splat {
+  float x, y;           // image position, pixels
+  float depth;          // along the view axis, world units
+  std::uint16_t entry;  // classification entry (and entry + 1, weighted by frac)
+  float frac;
+  float shade;      // ambient + diffuse |n·l|
+  float highlight;  // specular |n·h|^shininess × the material's specular weight
+};
+
+// Per-unit-length coefficients of one splat, from the per-step classification tables.
+struct SplatCoefficients {
+  float sigma_alpha;         // extinction that scatters (x-ray materials included)
+  std::span<float> sigma_t;  // kt: extinction that attenuates
+  std::span<float> colour;   // k: ρ·shade + white·highlight
+};
+
+class SplatList {
+ public:
+  SplatList(const ClassifiedVolume& volume, const RenderRequest& request,
+            const Projector& projector);
+  std::span<const Splat> splats() const { return splats_; }
+  const Footprint& footprint(std::size_t i) const {
+    return footprints_.size() == 1 ? footprints_[0] : footprints_[i];
+  }
+  float maxDepthSigma() const { return max_depth_sigma_; }
+  int channels() const { return k_; }
+  int transmittanceChannels() const { return kt_; }
+  // Fills out.sigma_t and out.colour (caller-owned storage of kt and k floats).
+  void coefficients(const Splat& splat, SplatCoefficients& out) const;
+
+ private:
+  const ClassifiedVolume& cv_;
+  int k_, kt_;
+  std::vector<float> sigma_alpha_, sigma_t_;  // per entry, per world unit
+  std::vector<Splat> splats_;
+  std::vector<Footprint> footprints_;  // one (orthographic) or one per splat
+  float max_depth_sigma_ = 0.f;
+};
+
+}  // namespace svr::splat
+
+namespace svr::splat {
+
+// Image rows cut into fixed bands of `rows` (independent of the thread count, so the result is
+// too); each band lists the splats whose footprint reaches it, front to back.
+struct Bands {
+  int rows = 8, count = 0;
+  std::vector<std::size_t> offsets;   // count + 1
+  std::vector<std::uint32_t> splats;  // band b: splats[offsets[b] .. offsets[b + 1])
+  std::span<const std::uint32_t> of(int b) const {
+    return {splats.data() + offsets[b], offsets[b + 1] - offsets[b]};
+  }
+};
+Bands bandsOf(const SplatList& list, int height, int rows);
+
+// The pixel range [lo, hi] whose centres lie within [centre − half, centre + half], clamped to
+// [0, size − 1] (empty when lo > hi).
+inline void pixelRange(float centre, float half, int size, int& lo, int& hi) {
+  lo = std::max(static_cast<int>(std::ceil(centre - half - 0.5f)), 0);
+  hi = std::min(static_cast<int>(std::floor(centre + half - 0.5f)), size - 1);
+}
+
+}  // namespace svr::splat

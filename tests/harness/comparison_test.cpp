@@ -1,0 +1,129 @@
+#include "harness/comparison.h"
+
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+
+#include "harness/compare_command.h"
+#include "harness/sweep_command.h"
+#include "renderers/registry.h"
+#include "spectral/componentwise_model.h"
+#include "spectral/image_difference.h"
+#include "tests/renderers/test_scenes.h"
+
+namespace svr {
+namespace {
+
+bool registered(const std::string& name) {
+  const auto names = rendererNames();
+  return std::find(names.begin(), names.end(), name) != names.end();
+}
+
+TEST(CompareRelit, IdenticalImagesDifferByZero) {
+  const auto model = makeSpectralModel(test::rendererObserver(), 6);
+  LightIndependentImage img(8, 8, 6, 1);
+  for (int p = 0; p < 6; ++p)
+    for (int i = 0; i < 64; ++i) img.setSample(p, i % 8, i / 8, 0.1f + 0.01f * p);
+  for (int i = 0; i < 64; ++i) img.setSample(6, i % 8, i / 8, 0.2f);
+  const Spectrum d65 = test::rendererObserver().unitLuminance(test::rendererLibrary().get("D65"));
+  const auto d = compareRelit(img, *model, img, *model, d65, test::rendererObserver().xyz(d65));
+  EXPECT_EQ(d.covered, 64u);
+  EXPECT_EQ(d.stats.mean, 0.0);
+  EXPECT_EQ(d.stats.max, 0.0);
+}
+
+TEST(CompareRelit, AKnownPerturbationGivesTheExpectedDeltaE) {
+  // Scaling S by 0.8 scales XYZ by 0.8: ΔE2000 is that of the two Lab colours, every pixel.
+  const auto model = makeSpectralModel(test::rendererObserver(), 81);
+  LightIndependentImage a(4, 4, 81, 1), b(4, 4, 81, 1);
+  const Spectrum refl = test::rendererLibrary().get("ColorChecker/orange");
+  for (int c = 0; c < 81; ++c)
+    for (int i = 0; i < 16; ++i) {
+      a.setSample(c, i % 4, i / 4, static_cast<float>(refl[c]));
+      b.setSample(c, i % 4, i / 4, static_cast<float>(0.8 * refl[c]));
+    }
+  for (int i = 0; i < 16; ++i) a.setSample(81, i % 4, i / 4, 0.0f), b.setSample(81, i % 4, i / 4, 0.0f);
+  const Spectrum d65 = test::rendererObserver().unitLuminance(test::rendererLibrary().get("D65"));
+  const Xyz white = test::rendererObserver().xyz(d65);
+  const Xyz xyz = test::rendererObserver().xyz(d65 * refl);
+  const double expected = deltaE2000(xyzToLab(xyz, white), xyzToLab(0.8 * xyz, white));
+  const auto d = compareRelit(a, *model, b, *model, d65, white);
+  EXPECT_NEAR(d.stats.mean, expected, 1e-3);
+  EXPECT_NEAR(d.stats.max, expected, 1e-3);
+  EXPECT_GT(expected, 3.0);
+}
+
+TEST(Tolerances, DefaultsAndSceneOverrides) {
+  auto find = [](const std::vector<Tolerance>& t, const std::string& m) {
+    for (const auto& x : t)
+      if (x.metric == m) return x.limit;
+    return -1.0;
+  };
+  EXPECT_EQ(find(tolerancesFor("raycast", {}), "de_vs_raycast_mean"), -1.0);
+  EXPECT_EQ(find(tolerancesFor("shearwarp", {}), "de_vs_raycast_mean"), 3.0);
+  const nlohmann::json scene = {{"de_mean", 5.0}, {"splat", {{"de_vs_raycast_mean", 4.5}}}};
+  EXPECT_EQ(find(tolerancesFor("splat", scene), "de_mean"), 5.0);
+  EXPECT_EQ(find(tolerancesFor("splat", scene), "de_vs_raycast_mean"), 4.5);
+  EXPECT_EQ(find(tolerancesFor("raycast", scene), "de_mean"), 5.0);
+}
+
+TEST(Comparison, RaycastAgainstItselfAndATightToleranceFails) {
+  Scene scene = test::phantomScene();
+  scene.width = scene.height = 32;
+  ComparisonSession session(scene, test::rendererDataDir());
+  // spectral:81 at the reference's own step and no early termination is the reference itself.
+  scene.step_voxels = 0.25;
+  scene.termination = 0.0;
+  ComparisonSession fine(scene, test::rendererDataDir());
+  const RunResult exact = fine.run({"raycast", "spectral:81", nlohmann::json::object()});
+  for (const auto& l : exact.lights) EXPECT_EQ(l.vs_reference.max, 0.0) << l.light;
+  const RunResult rgb = session.run({"raycast", "rgb", nlohmann::json::object()});
+  ASSERT_EQ(rgb.lights.size(), 4u);  // three lights and one mix
+  EXPECT_GT(rgb.lights[0].vs_reference.mean, 0.0);
+  const auto misses = checkTolerances(rgb, {{"de_mean", 1e-4}});
+  ASSERT_FALSE(misses.empty());
+  EXPECT_NE(misses[0].str().find("run 'raycast rgb' light 'D65': de_mean = "), std::string::npos)
+      << misses[0].str();
+  EXPECT_NE(misses[0].str().find("exceeds the tolerance 0.0001"), std::string::npos);
+  EXPECT_TRUE(checkTolerances(rgb, {}).empty());
+}
+
+TEST(Sweep, ThreeChannelsBreakDownUnderDeepAbsorptionWhereSixHold) {
+  const std::string out = (std::filesystem::temp_directory_path() / "svr_sweep_depth").string();
+  SweepOptions o;
+  o.data_dir = test::rendererDataDir();
+  o.scene = test::rendererDataDir() + "/scenes/phantom.json";
+  o.param = "depth=1:16:15";
+  o.renderers = {"raycast"};
+  o.width = o.height = 32;
+  o.charts = false;
+  o.quiet = true;
+  o.out_dir = out;
+  o.model = "factor:3";
+  const SweepResult k3 = runSweepStudy(o);
+  o.model = "factor:6";
+  const SweepResult k6 = runSweepStudy(o);
+  const double deep3 = k3.curves[0].de_mean.back(), deep6 = k6.curves[0].de_mean.back();
+  EXPECT_TRUE(std::isfinite(deep3) && std::isfinite(deep6));
+  EXPECT_GT(deep3, 2.0 * deep6) << "factor:3 " << deep3 << " factor:6 " << deep6;
+  EXPECT_TRUE(std::filesystem::exists(out + "/sweep.json"));
+}
+
+TEST(Sweep, SplatDirectModeIsWorseThanSheetMode) {
+  if (!registered("splat")) GTEST_SKIP() << "splat is not registered in this build";
+  Scene scene = test::phantomScene();
+  scene.width = scene.height = 48;
+  ComparisonSession session(scene, test::rendererDataDir());
+  auto mean = [](const RunResult& r) {
+    double m = 0;
+    for (const auto& l : r.lights) m += l.vs_reference.mean / r.lights.size();
+    return m;
+  };
+  const double sheet = mean(session.run({"splat", "factor:6", {{"splat", {{"mode", "sheet"}}}}}));
+  const double direct = mean(session.run({"splat", "factor:6", {{"splat", {{"mode", "direct"}}}}}));
+  EXPECT_GT(direct, sheet);
+}
+
+}  // namespace
+}  // namespace svr

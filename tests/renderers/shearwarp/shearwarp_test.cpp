@@ -1,0 +1,320 @@
+#include "renderers/shearwarp/shearwarp_renderer.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+
+#include "renderers/core/classification.h"
+#include "renderers/core/procedural_volume.h"
+#include "renderers/core/scene_model.h"
+#include "renderers/raycast/raycast_renderer.h"
+#include "renderers/shearwarp/rle_volume.h"
+#include "renderers/shearwarp/shear_warp_factorization.h"
+#include "spectral/error.h"
+#include "spectral/image_difference.h"
+#include "tests/renderers/test_scenes.h"
+
+namespace svr {
+namespace {
+
+ClassifiedVolume classifyScene(const Scene& scene, const ColourModel& model) {
+  ClassificationOptions options;
+  options.step_world = scene.stepWorld();
+  options.bins = scene.bins;
+  return classify(scene.volume, scene.transfer_function, model, options);
+}
+
+LightIndependentImage renderWith(const Renderer& renderer, const Scene& scene,
+                                 const ClassifiedVolume& cv) {
+  const RenderRequest request{cv,           scene.camera,      scene.width,
+                              scene.height, scene.shading,     scene.light_direction,
+                              scene.termination, true,         scene.renderer_options};
+  return renderer.render(request, nullptr);
+}
+
+LightIndependentImage renderScene(const Renderer& renderer, const Scene& scene,
+                                  const ColourModel& model) {
+  const ClassifiedVolume cv = classifyScene(scene, model);
+  return renderWith(renderer, scene, cv);
+}
+
+double slabVoxels(const Scene& scene) {
+  const auto& d = scene.volume.dims();
+  double n = 0;
+  for (int z = 0; z < d[2]; ++z) n += scene.volume.value(d[0] / 2, d[1] / 2, z);
+  return n;
+}
+
+// With extinction linear in the value, the field along a ray through the slab is piecewise
+// linear with its kinks on the z slices, which are the slices shear-warp samples; the slice sum
+// is then the exact line integral, at any angle, and so is exp(−σ d).
+TEST(ShearWarp, SlabTransmittanceIsExpMinusSigmaD) {
+  const auto model = makeSpectralModel(test::rendererObserver(), 81);
+  const double sigma = 0.05;
+  for (double elevation : {90.0, 60.0, 50.0}) {
+    Scene scene = test::slabScene(sigma, "", 0.5);
+    scene.camera = Camera::orbit(20.0, elevation, 200.0, 0.0, 20.0);
+    const double d = slabVoxels(scene) * scene.volume.spacing().z /
+                     std::sin(elevation * M_PI / 180.0);
+    const auto img = renderScene(ShearWarpRenderer(), scene, *model);
+    ASSERT_EQ(img.transmittanceChannels(), 1);
+    EXPECT_NEAR(img.transmittance(0, 16, 16), std::exp(-sigma * d), 2e-5) << elevation;
+    EXPECT_NEAR(img.transmittance(0, 5, 27), std::exp(-sigma * d), 2e-5) << elevation;
+  }
+}
+
+TEST(ShearWarp, SpectralSlabTransmittancePerChannel) {
+  const auto model = makeSpectralModel(test::rendererObserver(), 81);
+  Scene scene = test::slabScene(0.05, "ColorChecker/cyan", 0.125);
+  scene.camera = Camera::orbit(30.0, 55.0, 200.0, 0.0, 20.0);
+  const double d = slabVoxels(scene) / std::sin(55.0 * M_PI / 180.0);
+  const auto img = renderScene(ShearWarpRenderer(), scene, *model);
+  ASSERT_EQ(img.transmittanceChannels(), 81);
+  const Eigen::VectorXd a = test::rendererLibrary().get("ColorChecker/cyan").values();
+  const Eigen::VectorXd shape = a / a.mean();
+  for (int c = 0; c < 81; c += 10)
+    EXPECT_NEAR(img.transmittance(c, 16, 16), std::exp(-0.05 * d * shape[c]), 1e-4) << c;
+}
+
+// A voxelised ball of radius R: the optical depth through impact parameter b is σ·2√(R² − b²)
+// up to the voxelisation of the rim. The raycaster's own error against the closed form bounds
+// what the rim costs; shear-warp must stay within half a voxel of σ-depth of it.
+TEST(ShearWarp, SphereChordsMatchTheClosedForm) {
+  const auto model = makeSpectralModel(test::rendererObserver(), 3);
+  Scene scene = test::slabScene(0.05, "", 0.25);
+  scene.volume = sphereVolume({48, 48, 48}, glm::dvec3(1.0), 0.8 * 0.5 * 47);
+  const double radius = 0.8 * 0.5 * 47, sigma = 0.05;
+  scene.width = scene.height = 64;
+  scene.camera = Camera::orbit(30.0, 20.0, 200.0, 0.0, 48.0);
+  const ClassifiedVolume cv = classifyScene(scene, *model);
+  const auto sw = renderWith(ShearWarpRenderer(), scene, cv);
+  const auto rc = renderWith(RaycastRenderer(), scene, cv);
+  const double pixel = 48.0 / 64;
+  double worst_sw = 0, worst_rc = 0;
+  for (int x = 32; x < 64; x += 3) {
+    const double b = (x + 0.5 - 32) * pixel;
+    if (b > radius - 2) break;  // the rim itself is a voxelisation artefact for both
+    const double expected = sigma * sphereChordLength(radius, b);
+    worst_sw = std::max(worst_sw, std::abs(-std::log(sw.transmittance(0, x, 32)) - expected));
+    worst_rc = std::max(worst_rc, std::abs(-std::log(rc.transmittance(0, x, 32)) - expected));
+  }
+  std::printf("sphere: worst optical-depth error shearwarp %.4f, raycast %.4f (σ·voxel = %.3f)\n",
+              worst_sw, worst_rc, sigma);
+  EXPECT_LT(worst_rc, sigma * 1.0);
+  EXPECT_LT(worst_sw, worst_rc + sigma * 0.5);
+}
+
+// Every cell the runs mark non-transparent is one the criterion marks, and vice versa; every
+// voxel such a cell touches is stored with its exact value and the raycaster's gradient.
+void expectRoundTrip(const ClassifiedVolume& cv) {
+  const shearwarp::RleVolume rle(cv);
+  const std::vector<int> prefix = shearwarp::nonzeroOpacityPrefix(cv);
+  std::size_t occupied_cells = 0;
+  for (int axis = 0; axis < 3; ++axis) {
+    const shearwarp::AxisEncoding& enc = rle.encoding(axis);
+    const int ai = enc.axisI(), aj = enc.axisJ();
+    for (int k = 0; k < enc.slices(); ++k)
+      for (int j = 0; j + 1 < enc.rowCount(); ++j) {
+        std::vector<bool> decoded(enc.rowLength() - 1, false);
+        for (const auto& run : enc.runs(k, j)) {
+          ASSERT_LT(run.begin, run.end);
+          for (int i = run.begin; i < run.end; ++i) decoded[i] = true;
+        }
+        for (int i = 0; i + 1 < enc.rowLength(); ++i) {
+          int p[3];
+          p[axis] = k;
+          p[ai] = i;
+          p[aj] = j;
+          ASSERT_EQ(decoded[i], shearwarp::cellOccupied(cv, prefix, p[0], p[1], p[2], ai, aj))
+              << axis << " " << k << " " << j << " " << i;
+          if (!decoded[i]) continue;
+          ++occupied_cells;
+          for (int n = 0; n < 4; ++n) {
+            int q[3] = {p[0], p[1], p[2]};
+            q[ai] += n & 1;
+            q[aj] += n >> 1;
+            const int row = q[aj], col = q[ai];
+            const auto& span = enc.row(k, row);
+            ASSERT_GE(col, span.lo);
+            ASSERT_LT(col, span.lo + span.count);
+            const auto& rec = enc.voxel(k, row, col);
+            const std::size_t index =
+                (static_cast<std::size_t>(q[2]) * cv.dims[1] + q[1]) * cv.dims[0] + q[0];
+            ASSERT_EQ(rec.value, cv.labels ? float(cv.label[index]) : cv.values[index]);
+            // The gradient is the raycaster's central difference of the shading field.
+            for (int a = 0; a < 3; ++a) {
+              int lo[3] = {q[0], q[1], q[2]}, hi[3] = {q[0], q[1], q[2]};
+              lo[a] = std::max(q[a] - 1, 0);
+              hi[a] = std::min(q[a] + 1, cv.dims[a] - 1);
+              const auto at = [&](const int* r) {
+                return cv.shading_field[(static_cast<std::size_t>(r[2]) * cv.dims[1] + r[1]) *
+                                            cv.dims[0] +
+                                        r[0]];
+              };
+              ASSERT_FLOAT_EQ(rec.gradient[a],
+                              static_cast<float>((at(hi) - at(lo)) * 0.5 / cv.spacing[a]));
+            }
+          }
+        }
+      }
+    // Run-length encoding is worth it: far fewer voxels are stored than the volume has.
+    const std::size_t total = static_cast<std::size_t>(cv.dims[0]) * cv.dims[1] * cv.dims[2];
+    EXPECT_LT(enc.storedVoxels(), 2 * total) << axis;
+  }
+  EXPECT_GT(occupied_cells, 0u);
+}
+
+TEST(ShearWarp, RunLengthEncodingRoundTripsLabelMaps) {
+  const Scene scene = test::phantomScene();
+  const auto model = makeSpectralModel(test::rendererObserver(), 4);
+  expectRoundTrip(classifyScene(scene, *model));
+}
+
+TEST(ShearWarp, RunLengthEncodingRoundTripsScalarVolumes) {
+  Scene scene = test::slabScene(0.05, "", 0.5);
+  scene.volume = sphereVolume({24, 20, 16}, glm::dvec3(1.0, 1.5, 2.0), 7.0);
+  const auto model = makeSpectralModel(test::rendererObserver(), 3);
+  const ClassifiedVolume cv = classifyScene(scene, *model);
+  expectRoundTrip(cv);
+  const shearwarp::RleVolume rle(cv);
+  // The empty corners of the box are skipped: fewer stored voxels than the volume holds.
+  EXPECT_LT(rle.encoding(2).storedVoxels(), 24u * 20 * 16);
+}
+
+ImageDifference relitDifference(const LightIndependentImage& a, const LightIndependentImage& b,
+                                const ColourModel& model, const std::string& light) {
+  const Spectrum unit = test::rendererObserver().unitLuminance(test::rendererLibrary().get(light));
+  return compareRelit(a, model, b, model, unit, test::rendererObserver().xyz(unit));
+}
+
+// Against the raycaster with the same model, at a generic view (azimuth 30°, elevation 20°).
+// Measured (256², factor:6, D65): engine mean 1.24 / p95 3.42, frog mean 2.22 / p95 6.74. The
+// frog misses the goal of mean ≤ 2: at 256² its 500-voxel rows are decimated about 2:1 and its
+// thin label shells (retina, opacity 2) alias differently under the warp's bilinear taps than
+// under per-pixel rays, and the slice spacing (≥ 1 voxel, 1.5 along z) is twice the raycaster's
+// step. The bounds leave headroom for float differences, not for a regression.
+void expectCloseToRaycast(const std::string& file, double mean_bound, double p95_bound) {
+  Scene scene = loadScene(test::rendererDataDir() + "/scenes/" + file, test::rendererLibrary());
+  scene.camera = Camera::orbit(30.0, 20.0, 400.0, 0.0, scene.camera.ortho_height);
+  scene.width = scene.height = 256;
+  const SceneModel model = makeSceneModel("factor:6", scene, test::rendererObserver());
+  const ClassifiedVolume cv = classifyScene(scene, *model.model);
+  const auto sw = renderWith(ShearWarpRenderer(), scene, cv);
+  const auto rc = renderWith(RaycastRenderer(), scene, cv);
+  const ImageDifference d = relitDifference(sw, rc, *model.model, "D65");
+  std::printf("%s at 30°/20°: ΔE2000 mean %.3f p95 %.3f max %.3f over %zu pixels\n", file.c_str(),
+              d.stats.mean, d.stats.p95, d.stats.max, d.covered);
+  ASSERT_GT(d.covered, 5000u);
+  EXPECT_TRUE(d.stats.finite);
+  EXPECT_LT(d.stats.mean, mean_bound);
+  EXPECT_LT(d.stats.p95, p95_bound);
+}
+
+TEST(ShearWarp, EngineMatchesRaycastAtAGenericAngle) { expectCloseToRaycast("engine.json", 1.6, 4.5); }
+TEST(ShearWarp, FrogMatchesRaycastAtAGenericAngle) { expectCloseToRaycast("frog.json", 2.6, 8.0); }
+
+// On the principal axes and the 45° diagonals (where the principal axis switches, and the
+// tie-break decides): finite, and no gaps — wherever the raycaster sees the phantom opaque
+// enough, shear-warp sees it too.
+TEST(ShearWarp, AxisAndDiagonalCamerasRenderWithoutGaps) {
+  Scene scene = test::phantomScene();
+  const auto model = makeSpectralModel(test::rendererObserver(), 4);
+  const ClassifiedVolume cv = classifyScene(scene, *model);
+  const shearwarp::RleVolume rle(cv);
+  const ShearWarpRenderer shearwarp;
+  for (double elevation : {0.0, 35.26438968, 45.0, 90.0, -90.0})
+    for (double azimuth = 0.0; azimuth < 360.0; azimuth += 45.0) {
+      scene.camera = Camera::orbit(azimuth, elevation, 300.0, 0.0, 70.0);
+      const RenderRequest request{cv, scene.camera, scene.width, scene.height, scene.shading,
+                                  scene.light_direction, scene.termination, true,
+                                  scene.renderer_options};
+      LightIndependentImage sw, rc;
+      ASSERT_NO_THROW(sw = shearwarp.render(rle, request, nullptr)) << azimuth << " " << elevation;
+      rc = RaycastRenderer().render(request, nullptr);
+      int covered = 0;
+      for (int y = 0; y < scene.height; ++y)
+        for (int x = 0; x < scene.width; ++x) {
+          if (rc.transmittance(0, x, y) > 0.9f) continue;
+          ++covered;
+          ASSERT_LT(sw.transmittance(0, x, y), 0.97f) << azimuth << " " << elevation << " " << x
+                                                      << "," << y;
+        }
+      EXPECT_GT(covered, 100) << azimuth << " " << elevation;
+    }
+}
+
+TEST(ShearWarp, RefusesPerspectiveCamerasAndUnknownOptions) {
+  Scene scene = test::phantomScene();
+  const auto model = makeSpectralModel(test::rendererObserver(), 3);
+  scene.camera.fov_degrees = 30.0;
+  try {
+    renderScene(ShearWarpRenderer(), scene, *model);
+    FAIL();
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("perspective shear-warp is not implemented"),
+              std::string::npos)
+        << e.what();
+  }
+  scene = test::phantomScene();
+  scene.renderer_options = {{"shearwarp", {{"supersampel", 2}}}, {"splat", {{"mode", "sheet"}}}};
+  try {
+    renderScene(ShearWarpRenderer(), scene, *model);
+    FAIL();
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("supersampel"), std::string::npos) << e.what();
+  }
+  scene.renderer_options = {{"shearwarp", {{"supersample", 9}}}};
+  EXPECT_THROW(renderScene(ShearWarpRenderer(), scene, *model), Error);
+}
+
+// Supersampling the intermediate image reduces the blur of the warp when zoomed in: closer to
+// the raycaster.
+TEST(ShearWarp, SupersamplingReducesZoomBlur) {
+  Scene scene = loadScene(test::rendererDataDir() + "/scenes/engine.json", test::rendererLibrary());
+  scene.camera = Camera::orbit(30.0, 20.0, 400.0, 0.0, scene.camera.ortho_height / 3);
+  scene.width = scene.height = 192;
+  const auto model = makeRgbModel(test::rendererObserver());
+  const ClassifiedVolume cv = classifyScene(scene, *model);
+  const auto rc = renderWith(RaycastRenderer(), scene, cv);
+  const auto plain = renderWith(ShearWarpRenderer(), scene, cv);
+  scene.renderer_options = {{"shearwarp", {{"supersample", 3}}}};
+  const auto fine = renderWith(ShearWarpRenderer(), scene, cv);
+  const double e1 = relitDifference(plain, rc, *model, "D65").stats.mean;
+  const double e3 = relitDifference(fine, rc, *model, "D65").stats.mean;
+  std::printf("zoom 3×: ΔE2000 mean supersample 1: %.3f, 3: %.3f\n", e1, e3);
+  EXPECT_LT(e3, e1);
+}
+
+// The azimuth sweep for the issue note (run once: --gtest_also_run_disabled_tests): ΔE2000
+// against the raycaster with the same model, 0..90° in 1° steps, elevation 20°, and zoom
+// 0.5..4 at 30°. Prints one line per view.
+TEST(ShearWarp, DISABLED_AzimuthAndZoomSweep) {
+  Scene scene = loadScene(test::rendererDataDir() + "/scenes/engine.json", test::rendererLibrary());
+  scene.width = scene.height = 256;
+  const double height = scene.camera.ortho_height;
+  const SceneModel model = makeSceneModel("factor:6", scene, test::rendererObserver());
+  const ClassifiedVolume cv = classifyScene(scene, *model.model);
+  const shearwarp::RleVolume rle(cv);
+  const ShearWarpRenderer shearwarp;
+  const auto run = [&](double azimuth, double zoom, int supersample) {
+    scene.camera = Camera::orbit(azimuth, 20.0, 400.0, 0.0, height / zoom);
+    scene.renderer_options = {{"shearwarp", {{"supersample", supersample}}}};
+    const RenderRequest request{cv, scene.camera, scene.width, scene.height, scene.shading,
+                                scene.light_direction, scene.termination, true,
+                                scene.renderer_options};
+    const auto sw = shearwarp.render(rle, request, nullptr);
+    const auto rc = RaycastRenderer().render(request, nullptr);
+    const auto d = relitDifference(sw, rc, *model.model, "D65");
+    const auto f = shearwarp::factorizeView(scene.camera, scene.width, scene.height, cv.dims,
+                                            cv.spacing, supersample);
+    std::printf("sweep azimuth %5.1f zoom %.2f supersample %d axis %d: mean %.3f p95 %.3f max %.2f\n",
+                azimuth, zoom, supersample, f.axis, d.stats.mean, d.stats.p95, d.stats.max);
+  };
+  for (int a = 0; a <= 90; ++a) run(a, 1.0, 1);
+  for (double zoom : {0.5, 1.0, 2.0, 4.0})
+    for (int s : {1, 2}) run(30.0, zoom, s);
+}
+
+}  // namespace
+}  // namespace svr
