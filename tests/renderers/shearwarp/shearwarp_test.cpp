@@ -286,35 +286,5 @@ TEST(ShearWarp, SupersamplingReducesZoomBlur) {
   EXPECT_LT(e3, e1);
 }
 
-// The azimuth sweep for the issue note (run once: --gtest_also_run_disabled_tests): ΔE2000
-// against the raycaster with the same model, 0..90° in 1° steps, elevation 20°, and zoom
-// 0.5..4 at 30°. Prints one line per view.
-TEST(ShearWarp, DISABLED_AzimuthAndZoomSweep) {
-  Scene scene = loadScene(test::rendererDataDir() + "/scenes/engine.json", test::rendererLibrary());
-  scene.width = scene.height = 256;
-  const double height = scene.camera.ortho_height;
-  const SceneModel model = makeSceneModel("factor:6", scene, test::rendererObserver());
-  const ClassifiedVolume cv = classifyScene(scene, *model.model);
-  const shearwarp::RleVolume rle(cv);
-  const ShearWarpRenderer shearwarp;
-  const auto run = [&](double azimuth, double zoom, int supersample) {
-    scene.camera = Camera::orbit(azimuth, 20.0, 400.0, 0.0, height / zoom);
-    scene.renderer_options = {{"shearwarp", {{"supersample", supersample}}}};
-    const RenderRequest request{cv, scene.camera, scene.width, scene.height, scene.shading,
-                                scene.light_direction, scene.termination, true,
-                                scene.renderer_options};
-    const auto sw = shearwarp.render(rle, request, nullptr);
-    const auto rc = RaycastRenderer().render(request, nullptr);
-    const auto d = relitDifference(sw, rc, *model.model, "D65");
-    const auto f = shearwarp::factorizeView(scene.camera, scene.width, scene.height, cv.dims,
-                                            cv.spacing, supersample);
-    std::printf("sweep azimuth %5.1f zoom %.2f supersample %d axis %d: mean %.3f p95 %.3f max %.2f\n",
-                azimuth, zoom, supersample, f.axis, d.stats.mean, d.stats.p95, d.stats.max);
-  };
-  for (int a = 0; a <= 90; ++a) run(a, 1.0, 1);
-  for (double zoom : {0.5, 1.0, 2.0, 4.0})
-    for (int s : {1, 2}) run(30.0, zoom, s);
-}
-
 }  // namespace
 }  // namespace svr
