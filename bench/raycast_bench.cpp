@@ -11,23 +11,13 @@
 #include "renderers/registry.h"
 #include "spectral/colorimetry.h"
 #include "spectral/data_dir.h"
+#include "bench/engine_scene.h"
 
 namespace svr {
 namespace {
 
-struct Setup {
-  SpectrumLibrary library = SpectrumLibrary::load(defaultDataDir(), WavelengthGrid::standard());
-  Observer observer = Observer::cie1931(defaultDataDir(), WavelengthGrid::standard());
-  Scene scene = loadScene(defaultDataDir() + "/scenes/engine.json", library);
-};
-
-const Setup& setup() {
-  static const Setup s;
-  return s;
-}
-
 void raycast(benchmark::State& state, int size, const std::string& model_name) {
-  const Setup& s = setup();
+  const EngineBenchScene& s = engineBenchScene();
   const SceneModel model = makeSceneModel(model_name, s.scene, s.observer);
   ClassificationOptions options;
   options.step_world = s.scene.stepWorld();

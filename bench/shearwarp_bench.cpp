@@ -18,23 +18,13 @@
 #include "renderers/shearwarp/shearwarp_renderer.h"
 #include "spectral/colorimetry.h"
 #include "spectral/data_dir.h"
+#include "bench/engine_scene.h"
 
 namespace svr {
 namespace {
 
-struct Setup {
-  SpectrumLibrary library = SpectrumLibrary::load(defaultDataDir(), WavelengthGrid::standard());
-  Observer observer = Observer::cie1931(defaultDataDir(), WavelengthGrid::standard());
-  Scene scene = loadScene(defaultDataDir() + "/scenes/engine.json", library);
-};
-
-const Setup& setup() {
-  static const Setup s;
-  return s;
-}
-
 ClassifiedVolume classifyEngine(const ColourModel& model) {
-  const Setup& s = setup();
+  const EngineBenchScene& s = engineBenchScene();
   ClassificationOptions options;
   options.step_world = s.scene.stepWorld();
   options.bins = s.scene.bins;
@@ -42,13 +32,13 @@ ClassifiedVolume classifyEngine(const ColourModel& model) {
 }
 
 RenderRequest engineRequest(const ClassifiedVolume& cv, int size) {
-  const Scene& scene = setup().scene;
+  const Scene& scene = engineBenchScene().scene;
   return {cv,   scene.camera,      size, size, scene.shading, scene.light_direction,
           scene.termination, true, scene.renderer_options};
 }
 
 void frame(benchmark::State& state, int size, const std::string& model_name, bool shearwarp) {
-  const SceneModel model = makeSceneModel(model_name, setup().scene, setup().observer);
+  const SceneModel model = makeSceneModel(model_name, engineBenchScene().scene, engineBenchScene().observer);
   const ClassifiedVolume cv = classifyEngine(*model.model);
   const RenderRequest request = engineRequest(cv, size);
   const shearwarp::RleVolume encoded(cv);
@@ -63,9 +53,9 @@ void frame(benchmark::State& state, int size, const std::string& model_name, boo
 }
 
 void encode(benchmark::State& state, const std::string& model_name) {
-  const SceneModel model = makeSceneModel(model_name, setup().scene, setup().observer);
+  const SceneModel model = makeSceneModel(model_name, engineBenchScene().scene, engineBenchScene().observer);
   const ClassifiedVolume cv = classifyEngine(*model.model);
-  const auto view = shearwarp::factorizeView(setup().scene.camera, 512, 512, cv.dims, cv.spacing, 1);
+  const auto view = shearwarp::factorizeView(engineBenchScene().scene.camera, 512, 512, cv.dims, cv.spacing, 1);
   for (auto _ : state) {
     const shearwarp::RleVolume encoded(cv);
     benchmark::DoNotOptimize(&encoded.encoding(view.axis));
@@ -73,7 +63,7 @@ void encode(benchmark::State& state, const std::string& model_name) {
 }
 
 void classifyOnly(benchmark::State& state, const std::string& model_name) {
-  const SceneModel model = makeSceneModel(model_name, setup().scene, setup().observer);
+  const SceneModel model = makeSceneModel(model_name, engineBenchScene().scene, engineBenchScene().observer);
   for (auto _ : state) {
     const ClassifiedVolume cv = classifyEngine(*model.model);
     benchmark::DoNotOptimize(cv.alpha.data());
