@@ -2,7 +2,13 @@
 // The scene every backend bench renders (data/scenes/engine.json), loaded once per binary, so
 // the raycast, shear-warp and splat benches time the same volume, transfer function and view.
 
+#include <map>
+#include <string>
+#include <utility>
+
+#include "renderers/core/classification.h"
 #include "renderers/core/scene.h"
+#include "renderers/core/scene_model.h"
 #include "spectral/colorimetry.h"
 #include "spectral/data_dir.h"
 #include "spectral/spectrum_library.h"
@@ -18,6 +24,29 @@ struct EngineBenchScene {
 inline const EngineBenchScene& engineBenchScene() {
   static const EngineBenchScene s;
   return s;
+}
+
+// The engine classified for one model with the scene's step and bins: what a viewer holds
+// while only the view changes.
+inline ClassifiedVolume classifyEngine(const ColourModel& model) {
+  const EngineBenchScene& s = engineBenchScene();
+  ClassificationOptions options;
+  options.step_world = s.scene.stepWorld();
+  options.bins = s.scene.bins;
+  return classify(s.scene.volume, s.scene.transfer_function, model, options);
+}
+
+// The model and classification for a model name, built once per binary and kept.
+inline const ClassifiedVolume& engineClassified(const std::string& model_name) {
+  static std::map<std::string, std::pair<SceneModel, ClassifiedVolume>> cache;
+  auto it = cache.find(model_name);
+  if (it == cache.end()) {
+    const EngineBenchScene& s = engineBenchScene();
+    SceneModel model = makeSceneModel(model_name, s.scene, s.observer);
+    ClassifiedVolume cv = classifyEngine(*model.model);
+    it = cache.emplace(model_name, std::pair{std::move(model), std::move(cv)}).first;
+  }
+  return it->second.second;
 }
 
 }  // namespace svr

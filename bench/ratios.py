@@ -7,17 +7,29 @@
   raycast bench: time per frame of every model, and its ratio to rgb at the same size
     build/release/bench/svr_raycast_bench --benchmark_out=raycast.json --benchmark_out_format=json
     python3 bench/ratios.py raycast.json
+  splat bench: every CPU backend's time per frame, and its ratio to raycast with the same model
+    build/release/bench/svr_splat_bench --benchmark_out=splat.json --benchmark_out_format=json
+    python3 bench/ratios.py splat.json
 """
 import json
 import sys
 
 def config(name):
     """The benchmark's own name, without Google Benchmark's /min_time:…/real_time suffixes."""
-    return "/".join(p for p in name.split("/") if p != "real_time" and not p.startswith("min_time:"))
+    return "/".join(p for p in name.split("/") if p != "real_time" and not p.startswith(("min_time:", "iterations:")))
 
 
 runs = {config(b["name"]): b for b in json.load(open(sys.argv[1]))["benchmarks"]
         if b.get("run_type", "iteration") == "iteration"}
+frames = {n: b for n, b in runs.items() if n.startswith("Frame/")}
+if frames:
+    print(f"{'run':<44} {'ms/frame':>9} {'/ raycast':>9}")
+    for name, b in frames.items():
+        parts = name.split("/")
+        ray = runs.get("/".join(parts[:-1] + ["raycast"]))
+        ratio = b["real_time"] / ray["real_time"] if ray else float("nan")
+        print(f"{name:<44} {b['real_time']:9.1f} {ratio:9.2f}")
+    sys.exit(0)
 raycast = {n: b for n, b in runs.items() if n.startswith("Raycast/")}
 if raycast:
     print(f"{'run':<34} {'ms/frame':>9} {'/ rgb':>7}")

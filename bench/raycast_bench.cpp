@@ -19,10 +19,7 @@ namespace {
 void raycast(benchmark::State& state, int size, const std::string& model_name) {
   const EngineBenchScene& s = engineBenchScene();
   const SceneModel model = makeSceneModel(model_name, s.scene, s.observer);
-  ClassificationOptions options;
-  options.step_world = s.scene.stepWorld();
-  options.bins = s.scene.bins;
-  const ClassifiedVolume cv = classify(s.scene.volume, s.scene.transfer_function, *model.model, options);
+  const ClassifiedVolume cv = classifyEngine(*model.model);
   const auto renderer = makeRenderer("raycast");
   RenderRequest request{cv,   s.scene.camera,      size, size, s.scene.shading, s.scene.light_direction,
                         s.scene.termination, true, s.scene.renderer_options};

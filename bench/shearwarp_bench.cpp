@@ -23,14 +23,6 @@
 namespace svr {
 namespace {
 
-ClassifiedVolume classifyEngine(const ColourModel& model) {
-  const EngineBenchScene& s = engineBenchScene();
-  ClassificationOptions options;
-  options.step_world = s.scene.stepWorld();
-  options.bins = s.scene.bins;
-  return classify(s.scene.volume, s.scene.transfer_function, model, options);
-}
-
 RenderRequest engineRequest(const ClassifiedVolume& cv, int size) {
   const Scene& scene = engineBenchScene().scene;
   return {cv,   scene.camera,      size, size, scene.shading, scene.light_direction,

@@ -158,13 +158,13 @@ RunResult ComparisonSession::run(const RunSpec& spec) {
 std::vector<Tolerance> tolerancesFor(const std::string& renderer, const nlohmann::json& scene) {
   // Defaults. Against the spectral reference the colour model's own error counts too (rgb and
   // factor:3–4 under spiky lights reach mean 6–12); against the raycaster with the same model
-  // only the algorithm's error counts, and the raycaster is that reference itself. The splat
-  // bound is what it measures today on the frog label map (mean 7.2 at 96², see issue 5), not a
-  // goal.
+  // only the algorithm's error counts, and the raycaster is that reference itself. Splat
+  // measures mean 2.4 / p95 8.3 on the engine and 1.8 / 5.7 on the frog (512², azimuth 30°):
+  // pre-classified kernels against post-classified samples at the engine's sharp opacity steps.
   std::map<std::string, double> limits{{"de_mean", 15.0}, {"de_p95", 40.0}};
   if (renderer != "raycast") {
-    limits["de_vs_raycast_mean"] = renderer == "splat" ? 8.0 : 3.0;
-    limits["de_vs_raycast_p95"] = renderer == "splat" ? 20.0 : 12.0;
+    limits["de_vs_raycast_mean"] = 3.0;
+    limits["de_vs_raycast_p95"] = 12.0;
   }
   auto apply = [&](const nlohmann::json& table) {
     if (!table.is_object()) return;

@@ -5,9 +5,11 @@
 // once per transfer function, model and step; backends only read it.
 
 #include <Eigen/Core>
+#include <memory>
 #include <optional>
 #include <vector>
 
+#include "renderers/core/derived_cache.h"
 #include "renderers/core/transfer_function.h"
 #include "renderers/core/volume.h"
 #include "spectral/colour_model.h"
@@ -50,6 +52,9 @@ struct ClassifiedVolume {
   bool blockOccupied(int bx, int by, int bz) const {
     return block_occupied[(static_cast<std::size_t>(bz) * blocks[1] + by) * blocks[0] + bx] != 0;
   }
+
+  // What backends derive from this classification once (copies share it).
+  std::shared_ptr<DerivedCache> derived = std::make_shared<DerivedCache>();
 };
 
 // Throws svr::Error when the model is not componentwise (linear:k has no per-sample product

@@ -7,6 +7,7 @@
 #include <glm/geometric.hpp>
 
 #include "renderers/core/classification.h"
+#include "renderers/core/classified_sample.h"
 #include "renderers/core/renderer.h"
 
 namespace svr::raycast {
@@ -66,10 +67,6 @@ void traceTile(const TileJob& job) {
   const glm::dvec3 centre = 0.5 * glm::dvec3(dims[0] - 1, dims[1] - 1, dims[2] - 1);
   const double step = cv.step_world;
   const float threshold = static_cast<float>(req.termination);
-  const float ambient = static_cast<float>(req.shading.ambient);
-  const float diffuse = static_cast<float>(req.shading.diffuse);
-  const float specular = static_cast<float>(req.shading.specular);
-  const float shininess = static_cast<float>(req.shading.shininess);
   const int B = ClassifiedVolume::kBlock;
   const std::size_t pixels = job.image->pixels();
   float* out = job.image->planeFloat(0).data();
@@ -100,6 +97,7 @@ void traceTile(const TileJob& job) {
         const glm::dvec3 view = -ray.direction;
         const glm::dvec3 light = req.light_direction ? *req.light_direction : view;
         const glm::dvec3 half = glm::normalize(light + view);
+        const PhongSetup phong_setup(req.shading, light, half);
         const double first = t0 + 0.5 * step;
         for (double t = first; t < t1;) {
           const glm::dvec3 p = o + t * d;
@@ -124,51 +122,32 @@ void traceTile(const TileJob& job) {
           Trilinear cell;
           cellAt(dims, p, cell);
           if (cv.labels) {
-            // Classify each corner's label, then interpolate the classified values.
-            alpha = spec_w = 0.f;
-            for (int c = 0; c < k; ++c) refl[c] = 0.f;
-            for (int c = 0; c < kt; ++c) trans[c] = 0.f;
-            for (int n = 0; n < 8; ++n) {
-              const int e = cv.label[cell.i[n]];
-              const float w = cell.w[n];
-              alpha += w * cv.alpha[e];
-              spec_w += w * cv.specular[e];
-              for (int c = 0; c < k; ++c) refl[c] += w * cv.reflectance[e * k + c];
-              for (int c = 0; c < kt; ++c) trans[c] += w * cv.transmission[e * kt + c];
-            }
+            // Classify each corner's label, then blend the classified entries.
+            int entry[8];
+            for (int n = 0; n < 8; ++n) entry[n] = cv.label[cell.i[n]];
+            blendEntries(cv, cv.alpha.data(), cv.transmission.data(), entry, cell.w, 8, k, kt,
+                         alpha, spec_w, refl, trans);
           } else {
             float v = 0.f;
             for (int n = 0; n < 8; ++n) v += cell.w[n] * cv.values[cell.i[n]];
-            const float bin = std::clamp(static_cast<float>((v - cv.value_lo) * cv.value_scale),
-                                         0.f, static_cast<float>(cv.entries - 1));
-            const int e0 = std::min(static_cast<int>(bin), cv.entries - 2 >= 0 ? cv.entries - 2 : 0);
-            const int e1 = std::min(e0 + 1, cv.entries - 1);
-            const float f = bin - e0, g = 1.f - f;
-            alpha = g * cv.alpha[e0] + f * cv.alpha[e1];
-            spec_w = g * cv.specular[e0] + f * cv.specular[e1];
-            for (int c = 0; c < k; ++c)
-              refl[c] = g * cv.reflectance[e0 * k + c] + f * cv.reflectance[e1 * k + c];
-            for (int c = 0; c < kt; ++c)
-              trans[c] = g * cv.transmission[e0 * kt + c] + f * cv.transmission[e1 * kt + c];
+            int entry[2];
+            float frac;
+            binOf(cv, v, entry[0], entry[1], frac);
+            const float w[2] = {1.f - frac, frac};
+            blendEntries(cv, cv.alpha.data(), cv.transmission.data(), entry, w, 2, k, kt, alpha,
+                         spec_w, refl, trans);
           }
           if (alpha > 0.f) {
             // Phong with the gradient of the shading field (central differences, world units).
-            glm::dvec3 g;
+            float g[3];
             for (int a = 0; a < 3; ++a) {
               glm::dvec3 e(0.0);
               e[a] = 1.0;
-              g[a] = (sampleField(cv.shading_field, dims, p + e) -
-                      sampleField(cv.shading_field, dims, p - e)) *
-                     0.5 * inv_spacing[a];
+              g[a] = static_cast<float>((sampleField(cv.shading_field, dims, p + e) -
+                                         sampleField(cv.shading_field, dims, p - e)) *
+                                        0.5 * inv_spacing[a]);
             }
-            float shade = ambient + diffuse, highlight = 0.f;
-            const double gl = glm::length(g);
-            if (gl > 1e-6) {
-              const glm::dvec3 n = -g / gl;
-              shade = ambient + diffuse * static_cast<float>(std::abs(glm::dot(n, light)));
-              highlight = specular * std::pow(static_cast<float>(std::abs(glm::dot(n, half))),
-                                              shininess);
-            }
+            const auto [shade, highlight] = phong(phong_setup, g);
             const float hs = highlight * spec_w;
             if constexpr (kSpectralT) {
               for (int c = 0; c < k; ++c)

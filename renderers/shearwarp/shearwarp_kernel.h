@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "renderers/core/classification.h"
+#include "renderers/core/classified_sample.h"
 #include "renderers/shearwarp/intermediate_warp.h"
 #include "renderers/shearwarp/rle_volume.h"
 #include "renderers/shearwarp/shear_warp_factorization.h"
@@ -29,8 +30,8 @@ struct CompositeJob {
   const ShearWarpFactorization* view;
   const float* alpha;         // entries: opacity for the slice spacing
   const float* transmission;  // entries × t_channels: transmission for the slice spacing
-  float ambient, diffuse, specular, shininess, threshold;
-  float light[3], half[3];  // unit vectors, world
+  float threshold;
+  PhongSetup phong;  // light and half vectors are unit, world
   IntermediateImage* image;
 };
 
@@ -71,8 +72,6 @@ void compositeScanline(const CompositeJob& job, int v, std::vector<int>& links) 
   const int width = im.width;
   const int n_i = enc.rowLength(), n_j = enc.rowCount(), n_k = enc.slices();
   const double inv_scale = 1.0 / f.scale;
-  const int last_entry = cv.entries - 1;
-  const int last_pair = std::max(cv.entries - 2, 0);
 
   links.resize(width + 1);
   for (int u = 0; u <= width; ++u) links[u] = u;
@@ -102,30 +101,19 @@ void compositeScanline(const CompositeJob& job, int v, std::vector<int>& links) 
 
         float alpha, spec_w, refl[kCap], trans[kSpectralT ? kCap : 1];
         if (cv.labels) {
-          alpha = spec_w = 0.f;
-          for (int ch = 0; ch < k; ++ch) refl[ch] = 0.f;
-          for (int ch = 0; ch < kt; ++ch) trans[ch] = 0.f;
-          for (int n = 0; n < 4; ++n) {
-            const int e = static_cast<int>(c[n]->value);
-            alpha += w[n] * job.alpha[e];
-            spec_w += w[n] * cv.specular[e];
-            for (int ch = 0; ch < k; ++ch) refl[ch] += w[n] * cv.reflectance[e * k + ch];
-            for (int ch = 0; ch < kt; ++ch) trans[ch] += w[n] * job.transmission[e * kt + ch];
-          }
+          int entry[4];
+          for (int n = 0; n < 4; ++n) entry[n] = static_cast<int>(c[n]->value);
+          blendEntries(cv, job.alpha, job.transmission, entry, w, 4, k, kt, alpha, spec_w, refl,
+                       trans);
         } else {
           float value = 0.f;
           for (int n = 0; n < 4; ++n) value += w[n] * c[n]->value;
-          const float bin = std::clamp(static_cast<float>((value - cv.value_lo) * cv.value_scale),
-                                       0.f, static_cast<float>(last_entry));
-          const int e0 = std::min(static_cast<int>(bin), last_pair);
-          const int e1 = std::min(e0 + 1, last_entry);
-          const float g1 = bin - e0, g0 = 1.f - g1;
-          alpha = g0 * job.alpha[e0] + g1 * job.alpha[e1];
-          spec_w = g0 * cv.specular[e0] + g1 * cv.specular[e1];
-          for (int ch = 0; ch < k; ++ch)
-            refl[ch] = g0 * cv.reflectance[e0 * k + ch] + g1 * cv.reflectance[e1 * k + ch];
-          for (int ch = 0; ch < kt; ++ch)
-            trans[ch] = g0 * job.transmission[e0 * kt + ch] + g1 * job.transmission[e1 * kt + ch];
+          int entry[2];
+          float frac;
+          binOf(cv, value, entry[0], entry[1], frac);
+          const float wb[2] = {1.f - frac, frac};
+          blendEntries(cv, job.alpha, job.transmission, entry, wb, 2, k, kt, alpha, spec_w, refl,
+                       trans);
         }
         float* px = row + static_cast<std::size_t>(u) * stride;
         float* S = px;
@@ -134,14 +122,7 @@ void compositeScanline(const CompositeJob& job, int v, std::vector<int>& links) 
           float g[3] = {0.f, 0.f, 0.f};
           for (int n = 0; n < 4; ++n)
             for (int a = 0; a < 3; ++a) g[a] += w[n] * c[n]->gradient[a];
-          float shade = job.ambient + job.diffuse, highlight = 0.f;
-          const float gl = std::sqrt(g[0] * g[0] + g[1] * g[1] + g[2] * g[2]);
-          if (gl > 1e-6f) {
-            const float nl = -(g[0] * job.light[0] + g[1] * job.light[1] + g[2] * job.light[2]) / gl;
-            const float nh = -(g[0] * job.half[0] + g[1] * job.half[1] + g[2] * job.half[2]) / gl;
-            shade = job.ambient + job.diffuse * std::abs(nl);
-            highlight = job.specular * std::pow(std::abs(nh), job.shininess);
-          }
+          const auto [shade, highlight] = phong(job.phong, g);
           const float hs = highlight * spec_w;
           for (int ch = 0; ch < k; ++ch)
             S[ch] += T[kSpectralT ? ch : 0] * alpha * (refl[ch] * shade + cv.white[ch] * hs);

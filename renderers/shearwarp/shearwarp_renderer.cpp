@@ -95,15 +95,8 @@ LightIndependentImage ShearWarpRenderer::render(const shearwarp::RleVolume& enco
                               &view,
                               alpha.data(),
                               transmission.data(),
-                              static_cast<float>(req.shading.ambient),
-                              static_cast<float>(req.shading.diffuse),
-                              static_cast<float>(req.shading.specular),
-                              static_cast<float>(req.shading.shininess),
                               static_cast<float>(req.termination),
-                              {static_cast<float>(light.x), static_cast<float>(light.y),
-                               static_cast<float>(light.z)},
-                              {static_cast<float>(half.x), static_cast<float>(half.y),
-                               static_cast<float>(half.z)},
+                              PhongSetup(req.shading, light, half),
                               &intermediate};
   const ScanlineFn fn = cv.t_channels > 1 ? pickKernel<true>(cv.k) : pickKernel<false>(cv.k);
   std::atomic<int> done{0};

@@ -19,7 +19,7 @@ namespace svr::splat {
 // The kernel, in voxels: a Gaussian of standard deviation `sigma` along each axis (times the
 // spacing), truncated at `radius` (Mahalanobis, so the truncation is an ellipsoid).
 struct KernelShape {
-  double sigma = 0.7;
+  double sigma = 0.55;
   double radius = 2.0;
   double lowpass = 0.0;                             // screen-space low-pass filter σ, pixels
   double cutoff() const { return radius / sigma; }  // truncation in units of σ

@@ -21,8 +21,10 @@ void compositeBand(const SplatList& list, const FootprintTable& table,
   const int stride = 1 + kt + k;
   const int width = state.width(), y0 = state.y0(), y1 = state.y1();
   std::vector<float> sheet(static_cast<std::size_t>(y1 - y0) * width * stride, 0.f);
-  std::vector<float> sigma_t(kt), colour(k);
-  SplatCoefficients coef{0.f, sigma_t, colour};
+  // The coefficients of every active splat, computed once when it becomes active rather than
+  // on each of the sheets it reaches: sigma_alpha, kt sigma_t, k colour per splat.
+  const int coef_stride = 1 + kt + k;
+  std::vector<float> coefs;
   const auto splats = list.splats();
   const float cut = static_cast<float>(table.cutoff()), cut2 = table.cutoffSquared();
   // Every splat of one render has the same depth σ (the kernel seen along the view axis).
@@ -40,13 +42,25 @@ void compositeBand(const SplatList& list, const FootprintTable& table,
                           std::floor((splats[ids[next]].depth - reach - first_sheet) / thickness)));
     }
     const double z0 = first_sheet + j * thickness, z1 = z0 + thickness;
-    while (next < ids.size() && splats[ids[next]].depth - reach < z1) active.push_back(next++);
+    while (next < ids.size() && splats[ids[next]].depth - reach < z1) {
+      const std::size_t at = coefs.size();
+      coefs.resize(at + coef_stride);
+      SplatCoefficients coef{0.f, {&coefs[at + 1], static_cast<std::size_t>(kt)},
+                             {&coefs[at + 1 + kt], static_cast<std::size_t>(k)}};
+      list.coefficients(splats[ids[next]], coef);
+      coefs[at] = coef.sigma_alpha;
+      active.push_back(next++);
+    }
     int rx0 = width, rx1 = -1, ry0 = y1, ry1 = y0 - 1;  // the sheet's dirty rectangle
     std::size_t kept = 0;
-    for (const std::uint32_t a : active) {
+    for (std::size_t slot = 0; slot < active.size(); ++slot) {
+      const std::uint32_t a = active[slot];
       const std::uint32_t id = ids[a];
       const Splat& s = splats[id];
       if (s.depth + reach <= z0) continue;  // wholly in front of this sheet: retired
+      float* coef = &coefs[kept * coef_stride];
+      if (kept != slot)
+        std::copy_n(&coefs[slot * coef_stride], coef_stride, coef);
       active[kept++] = a;
       const float share = table.cdf(static_cast<float>((z1 - s.depth) / depth_sigma)) -
                           table.cdf(static_cast<float>((z0 - s.depth) / depth_sigma));
@@ -57,7 +71,9 @@ void compositeBand(const SplatList& list, const FootprintTable& table,
       pixelRange(s.y, fp.half_h, y1, ya, yb);
       ya = std::max(ya, y0);
       if (xa > xb || ya > yb || state.columnsDone(xa, xb)) continue;
-      list.coefficients(s, coef);
+      const float sigma_alpha = coef[0];
+      const float* sigma_t = coef + 1;
+      const float* colour = coef + 1 + kt;
       const float weight = fp.norm * share;
       for (int y = ya; y <= yb; ++y) {
         const float dy = y + 0.5f - s.y;
@@ -67,7 +83,7 @@ void compositeBand(const SplatList& list, const FootprintTable& table,
           if (q >= cut2 || state.done(x, y)) continue;
           const float length = weight * table.gaussian(q);  // world length of kernel in sheet
           float* b = &sheet[(static_cast<std::size_t>(y - y0) * width + x) * stride];
-          const float scatter = coef.sigma_alpha * length;
+          const float scatter = sigma_alpha * length;
           b[0] += scatter;
           for (int c = 0; c < kt; ++c) b[1 + c] += sigma_t[c] * length;
           for (int c = 0; c < k; ++c) b[1 + kt + c] += scatter * colour[c];
@@ -79,6 +95,7 @@ void compositeBand(const SplatList& list, const FootprintTable& table,
       }
     }
     active.resize(kept);
+    coefs.resize(kept * coef_stride);
 
     // Composite the sheet like one raycast sample: α = 1 − exp(−τ), colour = E / τ.
     for (int y = ry0; y <= ry1; ++y)

@@ -5,107 +5,71 @@
 #include <glm/geometric.hpp>
 #include <utility>
 
+#include "renderers/core/classified_sample.h"
+
 namespace svr::splat {
-namespace {
-
-// −ln(a)/Δs: the extinction that gives transmission a over the classification step.
-float perUnitLength(float transmission, double step) {
-  return static_cast<float>(-std::log(std::max(transmission, 1e-30f)) / step);
-}
-
-}  // namespace
 
 SplatList::SplatList(const ClassifiedVolume& cv, const RenderRequest& req,
                      const Projector& projector)
-    : cv_(cv), k_(cv.k), kt_(cv.t_channels) {
-  sigma_alpha_.resize(cv.entries);
-  sigma_t_.resize(static_cast<std::size_t>(cv.entries) * kt_);
-  for (int e = 0; e < cv.entries; ++e) {
-    sigma_alpha_[e] = perUnitLength(1.f - cv.alpha[e], cv.step_world);
-    for (int c = 0; c < kt_; ++c)
-      sigma_t_[e * kt_ + c] = perUnitLength(cv.transmission[e * kt_ + c], cv.step_world);
-  }
-
+    : cv_(cv), voxels_(SplatVoxels::of(cv)), k_(cv.k), kt_(cv.t_channels) {
   const Dims& d = cv.dims;
   const glm::dvec3 centre = 0.5 * glm::dvec3(d[0] - 1, d[1] - 1, d[2] - 1);
-  const glm::dvec3 inv_spacing = 1.0 / cv.spacing;
-  const float ambient = static_cast<float>(req.shading.ambient);
-  const float diffuse = static_cast<float>(req.shading.diffuse);
-  const float specular = static_cast<float>(req.shading.specular);
-  const float shininess = static_cast<float>(req.shading.shininess);
   const Footprint any = projector.footprint(glm::dvec3(0.0));
-  const std::size_t sx = 1, sy = d[0], sz = static_cast<std::size_t>(d[0]) * d[1];
+  const auto voxels = voxels_->voxels();
+  const bool any_specular = req.shading.specular > 0.0 &&
+                            std::any_of(cv.specular.begin(), cv.specular.end(),
+                                        [](float s) { return s > 0.f; });
 
-  // One list per z-slice, filled in parallel and joined in slice order: deterministic.
-  std::vector<std::vector<Splat>> slices(d[2]);
-  std::vector<std::vector<Footprint>> slice_footprints(d[2]);
+  // Fixed chunks of the voxel list, projected and shaded in parallel and joined in order:
+  // deterministic for any number of threads.
+  constexpr std::size_t kChunk = 1 << 14;
+  const std::size_t chunks = (voxels.size() + kChunk - 1) / kChunk;
+  std::vector<std::vector<Splat>> slices(chunks);
+  std::vector<std::vector<Footprint>> slice_footprints(chunks);
 #pragma omp parallel for schedule(dynamic)
-  for (int z = 0; z < d[2]; ++z) {
-    auto& out = slices[z];
-    for (int y = 0; y < d[1]; ++y)
-      for (int x = 0; x < d[0]; ++x) {
-        const std::size_t i = x * sx + y * sy + z * sz;
-        int e0 = 0;
-        float f = 0.f;
-        if (cv.labels) {
-          e0 = cv.label[i];
-        } else {
-          const float bin =
-              std::clamp(static_cast<float>((cv.values[i] - cv.value_lo) * cv.value_scale), 0.f,
-                         static_cast<float>(cv.entries - 1));
-          e0 = std::min(static_cast<int>(bin), std::max(cv.entries - 2, 0));
-          f = bin - e0;
-        }
-        const int e1 = std::min(e0 + 1, cv.entries - 1);
-        const float g = 1.f - f;
-        bool visible = g * sigma_alpha_[e0] + f * sigma_alpha_[e1] > 0.f;
-        for (int c = 0; c < kt_ && !visible; ++c)
-          visible = g * sigma_t_[e0 * kt_ + c] + f * sigma_t_[e1 * kt_ + c] > 0.f;
-        if (!visible) continue;
+  for (std::size_t chunk = 0; chunk < chunks; ++chunk) {
+    auto& out = slices[chunk];
+    const std::size_t end = std::min(voxels.size(), (chunk + 1) * kChunk);
+    for (std::size_t v = chunk * kChunk; v < end; ++v) {
+      const SplatVoxel& voxel = voxels[v];
+      const int x = static_cast<int>(voxel.index % d[0]);
+      const int y = static_cast<int>(voxel.index / d[0] % d[1]);
+      const int z = static_cast<int>(voxel.index / d[0] / d[1]);
+      const glm::dvec3 world = (glm::dvec3(x, y, z) - centre) * cv.spacing;
+      const glm::dvec3 pos = projector.project(world);
+      const Footprint fp = projector.orthographic() ? any : projector.footprint(world);
+      if (pos.z <= 0.0 && !projector.orthographic()) continue;  // behind the eye
+      if (pos.x + fp.half_w < 0 || pos.x - fp.half_w > req.width || pos.y + fp.half_h < 0 ||
+          pos.y - fp.half_h > req.height)
+        continue;
 
-        const glm::dvec3 world = (glm::dvec3(x, y, z) - centre) * cv.spacing;
-        const glm::dvec3 pos = projector.project(world);
-        const Footprint fp = projector.orthographic() ? any : projector.footprint(world);
-        if (pos.z <= 0.0 && !projector.orthographic()) continue;  // behind the eye
-        if (pos.x + fp.half_w < 0 || pos.x - fp.half_w > req.width || pos.y + fp.half_h < 0 ||
-            pos.y - fp.half_h > req.height)
-          continue;
-
-        // Phong from the central-difference gradient of the shading field at the voxel.
-        const int at[3] = {x, y, z};
-        glm::dvec3 grad;
-        for (int a = 0; a < 3; ++a) {
-          int lo[3] = {x, y, z}, hi[3] = {x, y, z};
-          lo[a] = std::max(at[a] - 1, 0);
-          hi[a] = std::min(at[a] + 1, d[a] - 1);
-          const float fhi = cv.shading_field[hi[0] * sx + hi[1] * sy + hi[2] * sz];
-          const float flo = cv.shading_field[lo[0] * sx + lo[1] * sy + lo[2] * sz];
-          grad[a] = (fhi - flo) * 0.5 * inv_spacing[a];
-        }
-        const glm::dvec3 view = projector.towardsEye(world);
-        const glm::dvec3 light = req.light_direction ? *req.light_direction : view;
-        const glm::dvec3 half = glm::normalize(light + view);
-        float shade = ambient + diffuse, highlight = 0.f;
-        const double gl = glm::length(grad);
-        if (gl > 1e-6) {
-          const glm::dvec3 n = -grad / gl;
-          shade = ambient + diffuse * static_cast<float>(std::abs(glm::dot(n, light)));
-          highlight =
-              specular * std::pow(static_cast<float>(std::abs(glm::dot(n, half))), shininess);
-        }
-        const float spec_w = g * cv.specular[e0] + f * cv.specular[e1];
-        out.push_back({static_cast<float>(pos.x), static_cast<float>(pos.y),
-                       static_cast<float>(pos.z), static_cast<std::uint16_t>(e0), f, shade,
-                       highlight * spec_w});
-        if (!projector.orthographic()) slice_footprints[z].push_back(fp);
+      // The splat carries its kernel's worth of emission, so its shade is the mean of the
+      // shade over the voxel's cell — the raycaster's Phong at the cell's 8 corners — not the
+      // shade at its centre: near a boundary those differ, and the centre alone is too bright.
+      const glm::dvec3 view = projector.towardsEye(world);
+      const glm::dvec3 light = req.light_direction ? *req.light_direction : view;
+      PhongSetup setup(req.shading, light, glm::normalize(light + view));
+      if (!any_specular) setup.specular = 0.f;
+      float shade = 0.f, highlight = 0.f;
+      for (int c = 0; c < 8; ++c) {
+        float g[3];
+        voxels_->gradientAtNode(x + (c & 1), y + ((c >> 1) & 1), z + ((c >> 2) & 1), g);
+        const PhongTerms t = phong(setup, g);
+        shade += t.shade;
+        highlight += t.highlight;
       }
+      out.push_back({static_cast<float>(pos.x), static_cast<float>(pos.y),
+                     static_cast<float>(pos.z), voxel.entry, voxel.frac, shade * 0.125f,
+                     highlight * 0.125f});
+      if (!projector.orthographic()) slice_footprints[chunk].push_back(fp);
+    }
   }
   std::size_t total = 0;
   for (const auto& s : slices) total += s.size();
   std::vector<Splat> joined;
   std::vector<Footprint> joined_fp;
   joined.reserve(total);
-  for (int z = 0; z < d[2]; ++z) {
+  for (std::size_t z = 0; z < chunks; ++z) {
     joined.insert(joined.end(), slices[z].begin(), slices[z].end());
     std::vector<Splat>().swap(slices[z]);
     joined_fp.insert(joined_fp.end(), slice_footprints[z].begin(), slice_footprints[z].end());
@@ -130,15 +94,14 @@ SplatList::SplatList(const ClassifiedVolume& cv, const RenderRequest& req,
 }
 
 void SplatList::coefficients(const Splat& s, SplatCoefficients& out) const {
-  const int e0 = s.entry, e1 = std::min(e0 + 1, cv_.entries - 1);
-  const float f = s.frac, g = 1.f - f;
-  out.sigma_alpha = g * sigma_alpha_[e0] + f * sigma_alpha_[e1];
-  for (int c = 0; c < kt_; ++c)
-    out.sigma_t[c] = g * sigma_t_[e0 * kt_ + c] + f * sigma_t_[e1 * kt_ + c];
-  for (int c = 0; c < k_; ++c)
-    out.colour[c] =
-        (g * cv_.reflectance[e0 * k_ + c] + f * cv_.reflectance[e1 * k_ + c]) * s.shade +
-        cv_.white[c] * s.highlight;
+  // The same blend as every backend's samples, weighted by the scattering extinction.
+  const int entry[2] = {s.entry, std::min(s.entry + 1, cv_.entries - 1)};
+  const float w[2] = {1.f - s.frac, s.frac};
+  float spec_w;
+  blendEntries(cv_, voxels_->sigmaAlpha().data(), voxels_->sigmaT().data(), entry, w, 2, k_, kt_,
+               out.sigma_alpha, spec_w, out.colour.data(), out.sigma_t.data());
+  const float highlight = s.highlight * spec_w;
+  for (int c = 0; c < k_; ++c) out.colour[c] = out.colour[c] * s.shade + cv_.white[c] * highlight;
 }
 
 }  // namespace svr::splat

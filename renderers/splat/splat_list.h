@@ -1,18 +1,19 @@
 #pragma once
-// The splats of one render: every voxel that scatters or absorbs (a list built once per render,
-// so empty space costs nothing afterwards), classified at the voxel (pre-classification, as the
-// raycaster does for label maps), shaded with the same Phong model from the gradient at the
-// voxel, projected to the image and sorted front to back.
+// The splats of one frame: every voxel of the classification's splat list (splat_voxels.h,
+// classified at the voxel — pre-classification), shaded with the same Phong model as every
+// backend, projected to the image and sorted front to back.
 
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <memory>
 #include <span>
 #include <vector>
 
 #include "renderers/core/classification.h"
 #include "renderers/core/renderer.h"
 #include "renderers/splat/footprint.h"
+#include "renderers/splat/splat_voxels.h"
 
 namespace svr::splat {
 
@@ -22,7 +23,7 @@ struct Splat {
   std::uint16_t entry;  // classification entry (and entry + 1, weighted by frac)
   float frac;
   float shade;      // ambient + diffuse |n·l|
-  float highlight;  // specular |n·h|^shininess × the material's specular weight
+  float highlight;  // specular |n·h|^shininess (the entries' specular weight applies later)
 };
 
 // Per-unit-length coefficients of one splat, from the per-step classification tables.
@@ -48,8 +49,8 @@ class SplatList {
 
  private:
   const ClassifiedVolume& cv_;
+  std::shared_ptr<const SplatVoxels> voxels_;
   int k_, kt_;
-  std::vector<float> sigma_alpha_, sigma_t_;  // per entry, per world unit
   std::vector<Splat> splats_;
   std::vector<Footprint> footprints_;  // one (orthographic) or one per splat
   float max_depth_sigma_ = 0.f;

@@ -26,7 +26,7 @@ SplatSettings readSplatSettings(const nlohmann::json& options) {
     r.at("mode").fail(fmt::format("'{}' is not sheet or direct", mode));
   s.sigma = r.number("sigma", s.sigma, 0.25, 4.0);
   s.radius = r.number("radius", s.radius, 0.5, 8.0);
-  s.sheet_voxels = r.number("sheet", s.sheet_voxels, 0.0, 8.0);
+  s.sheet_voxels = r.number("sheet", s.sheet_voxels, 0.1, 8.0);
   s.lowpass = r.number("lowpass", s.lowpass, 0.0, 4.0);
   r.rejectUnknownKeys();
   return s;
@@ -46,8 +46,7 @@ LightIndependentImage SplatRenderer::render(const RenderRequest& req,
   const float termination = static_cast<float>(req.termination);
   if (settings.mode == SplatSettings::Mode::kSheet) {
     const double min_spacing = std::min({cv.spacing.x, cv.spacing.y, cv.spacing.z});
-    const double thickness =
-        settings.sheet_voxels > 0 ? settings.sheet_voxels * min_spacing : cv.step_world;
+    const double thickness = settings.sheet_voxels * min_spacing;
     splat::compositeSheets(list, table, bands, thickness, termination, image, progress);
   } else {
     splat::compositeDirect(list, table, bands, termination, image, progress);

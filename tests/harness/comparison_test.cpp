@@ -110,7 +110,14 @@ TEST(Sweep, ThreeChannelsBreakDownUnderDeepAbsorptionWhereSixHold) {
   EXPECT_TRUE(std::filesystem::exists(out + "/sweep.json"));
 }
 
-TEST(Sweep, SplatDirectModeIsWorseThanSheetMode) {
+// Direct mode composites whole splats in the order of their centres; sheets slice the kernels
+// and keep overlapping ones in order. With the default kernel (σ 0.55 voxel, truncated at 2)
+// kernels overlap so little in depth that the two agree: measured 0.03 ΔE2000 apart on the
+// engine and 0.01 on the frog (512², azimuth 30°), and with σ 1.2 direct mode was even 0.2
+// closer to the reference than sheets on this phantom — the bleeding direct mode is known for
+// needs wider kernels than a voxel grid calls for. What must hold: the two stay within 0.3 and
+// both within the splat tolerance of the reference.
+TEST(Sweep, SplatDirectAndSheetModesAgreeAtTheDefaultKernel) {
   if (!registered("splat")) GTEST_SKIP() << "splat is not registered in this build";
   Scene scene = test::phantomScene();
   scene.width = scene.height = 48;
@@ -120,9 +127,14 @@ TEST(Sweep, SplatDirectModeIsWorseThanSheetMode) {
     for (const auto& l : r.lights) m += l.vs_reference.mean / r.lights.size();
     return m;
   };
-  const double sheet = mean(session.run({"splat", "factor:6", {{"splat", {{"mode", "sheet"}}}}}));
-  const double direct = mean(session.run({"splat", "factor:6", {{"splat", {{"mode", "direct"}}}}}));
-  EXPECT_GT(direct, sheet);
+  const double sheet = mean(session.run({"splat", "rgb", {{"splat", {{"mode", "sheet"}}}}}));
+  const double direct = mean(session.run({"splat", "rgb", {{"splat", {{"mode", "direct"}}}}}));
+  EXPECT_NEAR(direct, sheet, 0.3);
+  double tolerance = 0;
+  for (const Tolerance& t : tolerancesFor("splat", nlohmann::json::object()))
+    if (t.metric == "de_mean") tolerance = t.limit;
+  EXPECT_LT(sheet, tolerance);
+  EXPECT_LT(direct, tolerance);
 }
 
 }  // namespace

@@ -89,8 +89,9 @@ TEST(SplatFootprint, SheetSharesOfAKernelSumToOne) {
 }
 
 // The slab of linear extinction seen along z: T = exp(−σ Σ values), in both modes, over the
-// whole slab (no holes between splats). Tolerance: the Gaussian lattice's ripple and the table
-// lookups, measured below 2e-3.
+// whole slab (no holes between splats). Tolerance: the ripple of the kernel lattice — the sum
+// of the default kernels (σ 0.55, truncated at 2 voxels) varies by 1.9% peak to peak across a
+// voxel, so T = 0.55 at τ = 0.6 varies by ±0.55·0.6·0.0095 = ±0.0031 — plus table lookups.
 TEST(Splat, SlabTransmittanceIsExpMinusSigmaD) {
   const auto model = makeSpectralModel(test::rendererObserver(), 4);
   const Scene scene = test::slabScene(0.05, "", 0.5);
@@ -99,7 +100,7 @@ TEST(Splat, SlabTransmittanceIsExpMinusSigmaD) {
     const auto img = renderScene(scene, *model, SplatRenderer(), splatOptions(mode));
     for (int y = 4; y < 28; y += 3)
       for (int x = 4; x < 28; x += 3)
-        EXPECT_NEAR(img.transmittance(0, x, y), expected, 2e-3) << mode << " " << x << " " << y;
+        EXPECT_NEAR(img.transmittance(0, x, y), expected, 4e-3) << mode << " " << x << " " << y;
   }
 }
 
@@ -112,7 +113,7 @@ TEST(Splat, SpectralSlabTransmittancePerChannel) {
   const Eigen::VectorXd a = test::rendererLibrary().get("ColorChecker/cyan").values();
   const Eigen::VectorXd shape = a / a.mean();
   for (int c = 0; c < 81; c += 10)
-    EXPECT_NEAR(img.transmittance(c, 16, 16), std::exp(-0.05 * d * shape[c]), 2e-3) << c;
+    EXPECT_NEAR(img.transmittance(c, 16, 16), std::exp(-0.05 * d * shape[c]), 4e-3) << c;
 }
 
 // A ball of radius R: optical depth σ·2√(R² − b²) at impact parameter b. A binary ball is a
@@ -152,12 +153,14 @@ TEST(Splat, SphereChordsMatchTheAnalyticLength) {
 
 // Sheet mode against the raycaster at a generic view (azimuth 30°, elevation 20°): mean ΔE2000
 // over covered pixels under D65, 96×96, rgb (both images share the model, so only the backends
-// differ). Measured with the defaults: engine mean 2.70 / p95 10.1, frog mean 7.16 / p95 17.0
-// (frog at 256²: 7.17, so not aliasing; the splat image is ~30% brighter in S with the same T —
-// open, see issue 5's note). The bounds pin today's figures so a regression shows; the goal ≤ 2
-// is not met yet.
+// differ). Measured with the defaults: engine mean 2.32 / p95 8.1, frog 1.72 / 5.4 (at 512²:
+// 2.42 / 8.2 and 1.74 / 5.5, so not a matter of resolution). The frog meets the goal of 2; the
+// engine misses it by the difference between pre-classified kernels and the raycaster's
+// post-classified samples at its sharp opacity steps (the error sits on material boundaries).
+// Until 2026-11 the frog measured 7.16: the raycaster blended label colours without opacity
+// weighting, darkening every boundary, and splats were shaded at their centre only.
 TEST(Splat, SheetModeAgreesWithTheRaycaster) {
-  for (const auto& [name, bound] : {std::pair{"engine", 3.0}, {"frog", 7.6}}) {
+  for (const auto& [name, bound] : {std::pair{"engine", 2.6}, {"frog", 2.0}}) {
     SCOPED_TRACE(name);
     Scene scene =
         loadScene(test::rendererDataDir() + "/scenes/" + name + ".json", test::rendererLibrary());

@@ -1,0 +1,85 @@
+#pragma once
+// One classified, shaded sample — the part every backend shares (DESIGN §5): the classification
+// entries around a sample blended into α, reflectance, specular weight and transmission, and the
+// Phong terms from a gradient. Backends differ in where samples lie and how they composite, not
+// in what a sample is, so this lives here once.
+
+#include <algorithm>
+#include <cmath>
+#include <glm/vec3.hpp>
+
+#include "renderers/core/classification.h"
+#include "renderers/core/renderer.h"
+
+namespace svr {
+
+// Blends n classification entries with weights w (summing to 1) into one sample. α and the
+// transmission interpolate as they are; reflectance and the specular weight are opacity-weighted
+// (Wittenbrink, Malzbender & Goss 1998), so at a material's edge against empty space the
+// sample fades in opacity rather than in colour — interpolating colour alone would blend in the
+// empty entry's black and darken every boundary. `alpha` and `transmission` are the per-sample
+// tables (the classification's, or a backend's copy corrected for its own sample spacing).
+inline void blendEntries(const ClassifiedVolume& cv, const float* alpha_table,
+                         const float* transmission_table, const int* entry, const float* w, int n,
+                         int k, int kt, float& alpha, float& spec_w, float* refl, float* trans) {
+  alpha = spec_w = 0.f;
+  for (int c = 0; c < k; ++c) refl[c] = 0.f;
+  for (int c = 0; c < kt; ++c) trans[c] = 0.f;
+  for (int i = 0; i < n; ++i) {
+    const int e = entry[i];
+    const float a = w[i] * alpha_table[e];
+    alpha += a;
+    spec_w += a * cv.specular[e];
+    const float* r = &cv.reflectance[static_cast<std::size_t>(e) * k];
+    for (int c = 0; c < k; ++c) refl[c] += a * r[c];
+    const float* t = &transmission_table[static_cast<std::size_t>(e) * kt];
+    for (int c = 0; c < kt; ++c) trans[c] += w[i] * t[c];
+  }
+  if (alpha > 0.f) {
+    const float inv = 1.f / alpha;
+    spec_w *= inv;
+    for (int c = 0; c < k; ++c) refl[c] *= inv;
+  }
+}
+
+// The two classification entries a scalar value falls between, and the weight of the upper.
+inline void binOf(const ClassifiedVolume& cv, float value, int& e0, int& e1, float& frac) {
+  const float bin = std::clamp(static_cast<float>((value - cv.value_lo) * cv.value_scale), 0.f,
+                               static_cast<float>(cv.entries - 1));
+  e0 = std::min(static_cast<int>(bin), std::max(cv.entries - 2, 0));
+  e1 = std::min(e0 + 1, cv.entries - 1);
+  frac = bin - e0;
+}
+
+// The Phong model of every backend, two-sided (|n·l|, as volume boundaries have no outside):
+// `shade` multiplies the reflectance, `highlight` the white (times the specular weight).
+struct PhongTerms {
+  float shade, highlight;
+};
+
+// Light and half vectors of one view, as floats, with the shading coefficients.
+struct PhongSetup {
+  float light[3], half[3];
+  float ambient, diffuse, specular, shininess;
+  PhongSetup(const Shading& s, const glm::dvec3& light_dir, const glm::dvec3& half_dir)
+      : light{static_cast<float>(light_dir.x), static_cast<float>(light_dir.y),
+              static_cast<float>(light_dir.z)},
+        half{static_cast<float>(half_dir.x), static_cast<float>(half_dir.y),
+             static_cast<float>(half_dir.z)},
+        ambient(static_cast<float>(s.ambient)),
+        diffuse(static_cast<float>(s.diffuse)),
+        specular(static_cast<float>(s.specular)),
+        shininess(static_cast<float>(s.shininess)) {}
+};
+
+// Normals are −∇f/|∇f|; where the gradient vanishes (inside a uniform region) there is no
+// surface, and the sample is lit fully and without highlight.
+inline PhongTerms phong(const PhongSetup& p, const float g[3]) {
+  const float len = std::sqrt(g[0] * g[0] + g[1] * g[1] + g[2] * g[2]);
+  if (!(len > 1e-6f)) return {p.ambient + p.diffuse, 0.f};
+  const float nl = (g[0] * p.light[0] + g[1] * p.light[1] + g[2] * p.light[2]) / len;
+  const float nh = (g[0] * p.half[0] + g[1] * p.half[1] + g[2] * p.half[2]) / len;
+  return {p.ambient + p.diffuse * std::abs(nl), p.specular * std::pow(std::abs(nh), p.shininess)};
+}
+
+}  // namespace svr

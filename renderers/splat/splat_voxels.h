@@ -1,0 +1,49 @@
+#pragma once
+// The view-independent half of splatting, built once per classification and cached on it
+// (ClassifiedVolume::derived): the list of voxels that scatter or absorb — so empty space costs
+// nothing on any later frame — with their classification entries, the per-unit-length
+// extinction tables, and the shading field averaged over the cells of the dual grid, from which
+// each frame takes a splat's shade.
+
+#include <cstdint>
+#include <memory>
+#include <span>
+#include <vector>
+
+#include "renderers/core/classification.h"
+
+namespace svr::splat {
+
+struct SplatVoxel {
+  std::uint32_t index;  // x + y·nx + z·nx·ny
+  std::uint16_t entry;  // classification entry (and entry + 1, weighted by frac)
+  float frac;
+};
+
+class SplatVoxels {
+ public:
+  explicit SplatVoxels(const ClassifiedVolume& volume);
+  // The classification's instance, built on first use.
+  static std::shared_ptr<const SplatVoxels> of(const ClassifiedVolume& volume);
+
+  std::span<const SplatVoxel> voxels() const { return voxels_; }
+  // Per entry and per world unit: the extinction that scatters, and (× kt) that attenuates.
+  const std::vector<float>& sigmaAlpha() const { return sigma_alpha_; }
+  const std::vector<float>& sigmaT() const { return sigma_t_; }
+  // Gradient (world units) of the shading field at the dual-grid node (i, j, k), i in
+  // [0, nx]: the corner (i − ½, j − ½, k − ½) of the voxel grid, where the raycaster's
+  // central difference of the trilinear field takes exactly these cell averages.
+  void gradientAtNode(int i, int j, int k, float g[3]) const;
+
+ private:
+  float node(int i, int j, int k) const {
+    return cell_mean_[(static_cast<std::size_t>(k) * (dims_[1] + 1) + j) * (dims_[0] + 1) + i];
+  }
+  Dims dims_;
+  float inv_spacing_[3];
+  std::vector<SplatVoxel> voxels_;
+  std::vector<float> sigma_alpha_, sigma_t_;
+  std::vector<float> cell_mean_;  // (nx + 1)(ny + 1)(nz + 1): mean of the ≤ 8 voxels around
+};
+
+}  // namespace svr::splat
