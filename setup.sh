@@ -1,6 +1,8 @@
 #!/usr/bin/env bash
 # Installs the Debian packages svr builds and tests with. Does nothing when all are present.
 # Usage: ./setup.sh            (as root, or a user with sudo)
+#        ./setup.sh --peers    also VTK and Xvfb for bench/peers/run: ~30 MB to download, ~200 MB
+#                              installed, ~40 s; left out of the default (and CI) for that cost
 set -euo pipefail
 
 PACKAGES=(
@@ -11,7 +13,14 @@ PACKAGES=(
   libcli11-dev nlohmann-json3-dev libfmt-dev
   zlib1g-dev libteem-dev libssl-dev
   python3-matplotlib python3-numpy
+  clang libclang-rt-14-dev  # the fuzz preset: clang++ and libFuzzer (tests/fuzz)
+  libvolpack1-dev  # bench/peers: VolPack, the shear-warp peer (small, static)
 )
+case "${1:-}" in
+  "") ;;
+  --peers) PACKAGES+=(python3-vtk9 xvfb xauth) ;;  # bench/peers: VTK's ray caster under Xvfb
+  *) echo "setup: unknown argument '$1' (expected --peers or nothing)" >&2; exit 2 ;;
+esac
 
 missing=()
 for p in "${PACKAGES[@]}"; do

@@ -3,6 +3,9 @@
 // that encodes sRGB itself); StreamRead/<size>/<k>/<float|half> reads the same
 // bytes and does nothing else. Both report bytes/s and frames/s (items/s), so
 // relight time / streaming-read time comes from one run (bench/ratios.py prints it).
+// RelightGL/<size>/<k> is the same 8-bit sRGB frame through the gl backend's fragment shader
+// (OSMesa's llvmpipe here): the image uploaded once, then per frame the 3×k matrix as uniforms,
+// one draw and the read-back of the RGB bytes.
 #include <benchmark/benchmark.h>
 #include <fmt/format.h>
 
@@ -16,6 +19,9 @@
 #include "spectral/data_dir.h"
 #include "spectral/post_illumination.h"
 #include "spectral/spectrum_library.h"
+#ifdef SVR_HAVE_GL
+#include "renderers/gl/gl_relighter.h"
+#endif
 
 namespace svr {
 namespace {
@@ -79,6 +85,25 @@ std::uint64_t sumRows(const LightIndependentImage& image, int k) {
   return total;
 }
 
+#ifdef SVR_HAVE_GL
+void relightGl(benchmark::State& state, int size, int k) {
+  const auto image = makeImage(size, k, SampleStorage::kFloat);
+  const auto model = makeSpectralModel(observer(), k);
+  const auto lib = SpectrumLibrary::load(defaultDataDir(), WavelengthGrid::standard());
+  PostIlluminator post(*model);
+  post.setLight(model->project(observer().unitLuminance(lib.get("D65"))));
+  GlRelighter gl;
+  gl.setImage(image);
+  std::vector<std::uint8_t> out(3 * image.pixels());
+  for (auto _ : state) {
+    gl.relightSrgb8(post.foldedMatrix(image, RelitSpace::kLinearSrgb), out);
+    benchmark::DoNotOptimize(out.data());
+  }
+  state.SetBytesProcessed(state.iterations() * image.bytes());
+  state.SetItemsProcessed(state.iterations());
+}
+#endif
+
 void streamRead(benchmark::State& state, int size, int k, SampleStorage storage) {
   const auto image = makeImage(size, k, storage);
   for (auto _ : state) {
@@ -91,7 +116,8 @@ void streamRead(benchmark::State& state, int size, int k, SampleStorage storage)
 }
 
 const bool registered = [] {
-  for (int size : {400, 800})
+  // 256 … 1600 for the scaling curves (bench/scaling/run); 400 and 800 for bench/ratios.py.
+  for (int size : {256, 400, 800, 1600})
     for (int k : {3, 4, 6, 8, 16})
       for (auto storage : {SampleStorage::kFloat, SampleStorage::kHalf}) {
         const char* type = storage == SampleStorage::kFloat ? "float" : "half";
@@ -108,6 +134,14 @@ const bool registered = [] {
             ->UseRealTime()
             ->Unit(benchmark::kMicrosecond);
       }
+#ifdef SVR_HAVE_GL
+  for (int size : {400, 800})
+    for (int k : {3, 4, 6, 8, 16})
+      benchmark::RegisterBenchmark(fmt::format("RelightGL/{}/{}", size, k).c_str(), relightGl,
+                                   size, k)
+          ->UseRealTime()
+          ->Unit(benchmark::kMicrosecond);
+#endif
   // The same frame through every instruction set this CPU has, to choose between them.
   for (KernelIsa isa : availableKernelIsas())
     for (auto storage : {SampleStorage::kFloat, SampleStorage::kHalf})

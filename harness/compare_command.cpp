@@ -10,6 +10,7 @@
 #include "harness/image_files.h"
 #include "harness/progress.h"
 #include "renderers/registry.h"
+#include "spectral/atomic_file.h"
 #include "spectral/error.h"
 #include "spectral/post_illumination.h"
 
@@ -30,26 +31,19 @@ std::string slug(const std::string& text) {
 
 // Portable float map (grey, little-endian), rows bottom to top: numpy reads it in two lines.
 void writeFloatMap(const std::string& path, int width, int height, const std::vector<float>& v) {
-  const std::string tmp = path + ".tmp";
-  {
+  writeFileAtomically(path, [&](const std::string& tmp) {
     std::ofstream f(tmp, std::ios::binary);
     f << "Pf\n" << width << " " << height << "\n-1.0\n";
     for (int y = height - 1; y >= 0; --y)
       f.write(reinterpret_cast<const char*>(v.data() + static_cast<std::size_t>(y) * width),
               static_cast<std::streamsize>(width * sizeof(float)));
+    f.flush();
     if (!f) throw Error(fmt::format("{}: write failed", path));
-  }
-  fs::rename(tmp, path);
+  });
 }
 
 void writeJson(const std::string& path, const nlohmann::json& j) {
-  const std::string tmp = path + ".tmp";
-  {
-    std::ofstream f(tmp);
-    f << j.dump(1) << "\n";
-    if (!f) throw Error(fmt::format("{}: write failed", path));
-  }
-  fs::rename(tmp, path);
+  writeTextAtomically(path, j.dump(1) + "\n");
 }
 
 nlohmann::json finiteOrNull(double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(); }
@@ -73,6 +67,10 @@ CompareSummary runComparison(const CompareOptions& o) {
   if (o.height > 0) scene.height = o.height;
   const std::vector<std::string> renderers = o.renderers.empty() ? rendererNames() : o.renderers;
   for (const auto& r : renderers) makeRenderer(r);  // unknown names fail before any work
+  checkRendererOptions(scene.renderer_options, o.scene + ": render.options");
+  for (const auto& v : o.variants)  // a variant for an unknown backend would never run
+    checkRendererOptions({{v.substr(0, v.find('.')), nlohmann::json::object()}},
+                         fmt::format("--variant '{}'", v));
   const std::vector<std::string> models =
       o.models.empty() ? std::vector<std::string>{"rgb", "factor:3", "factor:4", "factor:6",
                                                   "factor:8", "spectral:31"}

@@ -161,6 +161,8 @@ std::vector<Tolerance> tolerancesFor(const std::string& renderer, const nlohmann
   // only the algorithm's error counts, and the raycaster is that reference itself. Splat
   // measures mean 2.4 / p95 8.3 on the engine and 1.8 / 5.7 on the frog (512², azimuth 30°):
   // pre-classified kernels against post-classified samples at the engine's sharp opacity steps.
+  // gl runs the splat algorithm on OpenGL and stays within ΔE2000 0.15 of it (issue 6; engine
+  // 2.35 / p95 8.1, frog 1.73 / 5.4 at 96²), so the same bounds hold for it.
   std::map<std::string, double> limits{{"de_mean", 15.0}, {"de_p95", 40.0}};
   if (renderer != "raycast") {
     limits["de_vs_raycast_mean"] = 3.0;

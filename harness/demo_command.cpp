@@ -3,10 +3,10 @@
 #include <fmt/format.h>
 
 #include <filesystem>
-#include <fstream>
 #include <nlohmann/json.hpp>
 
 #include "harness/compare_command.h"
+#include "spectral/atomic_file.h"
 #include "spectral/error.h"
 
 namespace svr {
@@ -29,10 +29,7 @@ int runDemo(const DemoOptions& o) {
     c.quiet = o.quiet;
     summaries.push_back(runComparison(c));
   }
-  {
-    std::ofstream f(fs::path(o.out_dir) / "demo.json");
-    f << demo.dump(1) << "\n";
-  }
+  writeTextAtomically((fs::path(o.out_dir) / "demo.json").string(), demo.dump(1) + "\n");
   renderReportCharts(o.out_dir);
   bool pass = true;
   for (const auto& s : summaries) {

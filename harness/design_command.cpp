@@ -6,10 +6,10 @@
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
-#include <fstream>
 #include <nlohmann/json.hpp>
 
 #include "harness/image_files.h"
+#include "spectral/atomic_file.h"
 #include "spectral/colorimetry.h"
 #include "spectral/design_solver.h"
 #include "spectral/error.h"
@@ -23,16 +23,6 @@ namespace svr {
 namespace fs = std::filesystem;
 
 namespace {
-
-void writeText(const fs::path& path, const std::string& text) {
-  const fs::path tmp = path.string() + ".tmp";
-  {
-    std::ofstream out(tmp);
-    out << text;
-    if (!out) throw Error(fmt::format("{}: cannot write", path.string()));
-  }
-  fs::rename(tmp, path);
-}
 
 std::string spectraCsv(const DesignResult& r) {
   std::string text = "wavelength_nm";
@@ -102,7 +92,7 @@ int runDesign(const DesignCommandOptions& o) {
   fs::create_directories(o.out_dir, ec);
   if (ec) throw Error(fmt::format("{}: cannot create folder: {}", o.out_dir, ec.message()));
   const fs::path out(o.out_dir);
-  writeText(out / "spectra.csv", spectraCsv(r));
+  writeTextAtomically(out / "spectra.csv", spectraCsv(r));
 
   nlohmann::json plain;
   plain["description"] = fmt::format("designed by svr design from {}", o.palette);
@@ -111,7 +101,7 @@ int runDesign(const DesignCommandOptions& o) {
     arr = nlohmann::json::array();
     for (const auto& s : *list) arr.push_back({{"name", s.name}, {"csv", "spectra.csv"}, {"column", s.name}});
   }
-  writeText(out / "palette.json", plain.dump(2) + "\n");
+  writeTextAtomically(out / "palette.json", plain.dump(2) + "\n");
 
   nlohmann::json design;
   design["cells"] = nlohmann::json::array();
@@ -130,7 +120,7 @@ int runDesign(const DesignCommandOptions& o) {
   design["converged"] = r.converged;
   design["history"] = r.history;
   design["misses"] = r.misses;
-  writeText(out / "design.json", design.dump(2) + "\n");
+  writeTextAtomically(out / "design.json", design.dump(2) + "\n");
 
   writeSwatches(palette, r, observer, (out / "palette.png").string());
   if (o.plots) {

@@ -4,11 +4,11 @@
 
 #include <chrono>
 #include <filesystem>
-#include <fstream>
 #include <map>
 #include <nlohmann/json.hpp>
 
 #include "harness/progress.h"
+#include "spectral/atomic_file.h"
 #include "spectral/colorimetry.h"
 #include "spectral/componentwise_model.h"
 #include "spectral/error.h"
@@ -204,14 +204,7 @@ int runModelError(const ModelErrorOptions& o) {
                                {"iterations", m.training.iterations}});
     out["training"] = training_info;
     out["lights"] = light_names;
-    const std::string tmp = o.json_path + ".tmp";
-    {
-      std::ofstream f(tmp);
-      if (!f) throw Error(fmt::format("{}: cannot write", o.json_path));
-      f << out.dump(1) << "\n";
-      if (!f) throw Error(fmt::format("{}: write failed", o.json_path));
-    }
-    std::filesystem::rename(tmp, o.json_path);
+    writeTextAtomically(o.json_path, out.dump(1) + "\n");
     fmt::print("wrote {}\n", o.json_path);
   }
   return 0;

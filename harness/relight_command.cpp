@@ -8,6 +8,9 @@
 #include <sstream>
 
 #include "harness/image_files.h"
+#ifdef SVR_HAVE_GL
+#include "renderers/gl/gl_relighter.h"
+#endif
 #include "spectral/colorimetry.h"
 #include "spectral/error.h"
 #include "spectral/light_mixer.h"
@@ -70,7 +73,18 @@ int runRelight(const RelightOptions& o) {
   post.setLight(light, o.exposure);
   if (!o.background.empty()) post.setBackground(model->project(library.get(o.background)));
   std::vector<std::uint8_t> rgb(3 * image.pixels());
-  post.relightSrgb8(image, rgb);
+  if (o.gl) {
+#ifdef SVR_HAVE_GL
+    GlRelighter gl;
+    gl.setImage(image);
+    gl.relightSrgb8(post.foldedMatrix(image, RelitSpace::kLinearSrgb), rgb);
+#else
+    throw Error("relight: --gl needs the gl backend, which is not built: OSMesa was not found "
+                "when svr was configured (install libosmesa6-dev and configure again)");
+#endif
+  } else {
+    post.relightSrgb8(image, rgb);
+  }
   writeSrgbPng(rgb, image.width(), image.height(), o.out);
   return 0;
 }

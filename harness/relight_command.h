@@ -1,7 +1,8 @@
 #pragma once
 // `svr relight LI.exr --light D65 | --mix A:0.3,F11:0.7 --out x.png`: post-illumination of a
 // saved light-independent image, no re-rendering. The colour model is read from the JSON the
-// renderer wrote beside the EXR (or --model).
+// renderer wrote beside the EXR (or --model). --gl relights in an OpenGL fragment shader (the
+// same maths, to one 8-bit code value).
 
 #include <string>
 
@@ -16,6 +17,7 @@ struct RelightOptions {
   std::string background;
   double exposure = 1.0;
   std::string out;
+  bool gl = false;  // relight with GlRelighter (the gl backend's fragment shader)
 };
 
 int runRelight(const RelightOptions& options);

@@ -5,7 +5,6 @@
 #include <cctype>
 #include <chrono>
 #include <filesystem>
-#include <fstream>
 #include <nlohmann/json.hpp>
 
 #include "harness/image_files.h"
@@ -15,6 +14,7 @@
 #include "renderers/core/scene.h"
 #include "renderers/core/scene_model.h"
 #include "renderers/registry.h"
+#include "spectral/atomic_file.h"
 #include "spectral/colorimetry.h"
 #include "spectral/error.h"
 #include "spectral/light_mixer.h"
@@ -62,7 +62,9 @@ int runRender(const RenderOptions& o) {
   if (o.width) scene.width = *o.width;
   if (o.height) scene.height = *o.height;
   const auto renderer = makeRenderer(o.renderer);  // unknown names fail before any work
+  checkRendererOptions(scene.renderer_options, o.scene + ": render.options");
   for (const auto& option : o.options) applyOption(scene.renderer_options, option);
+  checkRendererOptions(scene.renderer_options, "--option");
   const double load_ms = msSince(t_load);
 
   const auto t_classify = clock::now();
@@ -157,11 +159,7 @@ int runRender(const RenderOptions& o) {
   for (const auto& out : outputs) images.push_back({{"light", out.name}, {"file", out.file}});
   report["images"] = images;
   const std::string report_path = (fs::path(o.out_dir) / "render.json").string();
-  {
-    std::ofstream f(report_path);
-    f << report.dump(1) << "\n";
-    if (!f) throw Error(fmt::format("{}: write failed", report_path));
-  }
+  writeTextAtomically(report_path, report.dump(1) + "\n");
   if (!o.quiet)
     fmt::print("{}: {} with {} ({}), {}×{}: load {:.0f} ms, classify {:.0f} ms, render {:.0f} ms, "
                "relight {:.2f} ms/light → {}\n",

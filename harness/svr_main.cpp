@@ -159,6 +159,8 @@ int main(int argc, char** argv) {
   relight_command->add_option("--exposure", relight.exposure, "scale of the relit image")
       ->capture_default_str();
   relight_command->add_option("--out", relight.out, "PNG to write")->required();
+  relight_command->add_flag("--gl", relight.gl,
+                            "relight in an OpenGL fragment shader (OSMesa) instead of on the CPU");
   relight_command->callback([&] {
     relight.data_dir = data_dir;
     svr::runRelight(relight);

@@ -5,13 +5,13 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
-#include <fstream>
 #include <glm/geometric.hpp>
 
 #include "harness/compare_command.h"
 #include "harness/comparison.h"
 #include "harness/progress.h"
 #include "renderers/registry.h"
+#include "spectral/atomic_file.h"
 #include "spectral/error.h"
 
 namespace svr {
@@ -150,11 +150,7 @@ SweepResult runSweepStudy(const SweepOptions& o) {
     j["renderers"].push_back({{"renderer", c.renderer}, {"de_mean", de}, {"ms", c.ms}, {"flags", c.flags}});
   }
   const fs::path path = fs::path(o.out_dir) / "sweep.json";
-  {
-    std::ofstream f(path.string() + ".tmp");
-    f << j.dump(1) << "\n";
-  }
-  fs::rename(path.string() + ".tmp", path);
+  writeTextAtomically(path.string(), j.dump(1) + "\n");
   if (o.charts) renderReportCharts(o.out_dir);
   return result;
 }

@@ -3,12 +3,13 @@
 #include <fmt/format.h>
 
 #include <charconv>
-#include <fstream>
 #include <nlohmann/json.hpp>
 
+#include "spectral/atomic_file.h"
 #include "spectral/colorimetry.h"
 #include "spectral/componentwise_model.h"
 #include "spectral/error.h"
+#include "spectral/json_reader.h"
 #include "spectral/linear_model.h"
 
 namespace svr {
@@ -137,22 +138,11 @@ std::unique_ptr<ColourModel> modelFromJson(const nlohmann::json& j, const std::s
 }
 
 void saveModel(const ColourModel& model, const std::string& path) {
-  std::ofstream out(path);
-  if (!out) throw Error(fmt::format("{}: cannot write colour model", path));
-  out << model.toJson().dump(1) << "\n";
-  if (!out) throw Error(fmt::format("{}: write failed", path));
+  writeTextAtomically(path, model.toJson().dump(1) + "\n");
 }
 
 std::unique_ptr<ColourModel> loadModel(const std::string& path) {
-  std::ifstream in(path);
-  if (!in) throw Error(fmt::format("{}: cannot open colour model", path));
-  nlohmann::json j;
-  try {
-    in >> j;
-  } catch (const nlohmann::json::exception& e) {
-    throw Error(fmt::format("{}: invalid JSON: {}", path, e.what()));
-  }
-  return modelFromJson(j, path);
+  return modelFromJson(JsonReader::parseFile(path), path);
 }
 
 }  // namespace svr

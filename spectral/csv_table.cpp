@@ -4,10 +4,10 @@
 
 #include <charconv>
 #include <cmath>
-#include <fstream>
 #include <sstream>
 
 #include "spectral/error.h"
+#include "spectral/text_file.h"
 
 namespace svr {
 namespace {
@@ -102,11 +102,7 @@ CsvTable parseCsvTable(const std::string& text, const std::string& source) {
 }
 
 CsvTable loadCsvTable(const std::string& path) {
-  std::ifstream file(path, std::ios::binary);
-  if (!file) throw Error(fmt::format("{}: cannot open spectrum table", path));
-  std::ostringstream text;
-  text << file.rdbuf();
-  return parseCsvTable(text.str(), path);
+  return parseCsvTable(readTextFile(path, "spectrum table"), path);
 }
 
 }  // namespace svr

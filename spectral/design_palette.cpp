@@ -91,7 +91,11 @@ int indexOf(const std::vector<DesignSpectrum>& list, const JsonReader& name, con
 
 DesignPalette loadDesignPalette(const std::string& path, const SpectrumLibrary& library,
                                 const Observer& observer) {
-  const nlohmann::json json = JsonReader::parseFile(path);
+  return parseDesignPalette(JsonReader::parseFile(path), path, library, observer);
+}
+
+DesignPalette parseDesignPalette(const nlohmann::json& json, const std::string& path,
+                                 const SpectrumLibrary& library, const Observer& observer) {
   const JsonReader root(json, path);
   if (!root.isObject()) root.fail("expected a JSON object");
   const auto base = std::filesystem::path(path).parent_path();

@@ -18,6 +18,7 @@
 // light (Y = 1); sRGB and Lab targets use the sRGB (D65) white: "#ffffff" is XYZ of D65, Y = 1.
 // "like" takes the colour of a reflectance under that (given) light.
 
+#include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
 
@@ -78,6 +79,9 @@ struct DesignPalette {
 
 DesignPalette loadDesignPalette(const std::string& path, const SpectrumLibrary& library,
                                 const Observer& observer);
+// The same from JSON already in memory; `path` names it and anchors relative CSV paths.
+DesignPalette parseDesignPalette(const nlohmann::json& json, const std::string& path,
+                                 const SpectrumLibrary& library, const Observer& observer);
 
 // The sRGB hex colour ("#rrggbb") as XYZ with the sRGB white at Y = 1.
 Xyz srgbHexToXyz(const std::string& hex);

@@ -3,23 +3,103 @@
 #include <fmt/format.h>
 
 #include <cmath>
-#include <fstream>
+#include <set>
+#include <vector>
 
 #include "spectral/error.h"
+#include "spectral/text_file.h"
 
 namespace svr {
 
 JsonReader::JsonReader(const nlohmann::json& value, std::string file, std::string path)
     : value_(value), file_(std::move(file)), path_(std::move(path)) {}
 
-nlohmann::json JsonReader::parseFile(const std::string& path) {
-  std::ifstream in(path);
-  if (!in) throw Error(fmt::format("{}: cannot open", path));
-  try {
-    return nlohmann::json::parse(in);
-  } catch (const nlohmann::json::exception& e) {
-    throw Error(fmt::format("{}: invalid JSON: {}", path, e.what()));
+namespace {
+
+constexpr std::size_t kMaxDepth = 256;
+
+// One open object or array while parsing: its keys so far (objects) or its element count
+// (arrays), and the key whose value is being read, for naming a duplicate's path.
+struct OpenValue {
+  bool object = false;
+  std::set<std::string> keys;
+  std::string key;
+  std::size_t index = 0;
+};
+
+// "lights[2].name": the path through the first n open values.
+std::string pathThrough(const std::vector<OpenValue>& open, std::size_t n) {
+  std::string path;
+  for (std::size_t i = 0; i < n; ++i) {
+    if (open[i].object)
+      path += (path.empty() ? "" : ".") + open[i].key;
+    else
+      path += fmt::format("[{}]", open[i].index);
   }
+  return path;
+}
+
+// A value as an error message shows it: compact, invalid UTF-8 replaced, long ones cut.
+std::string shown(const nlohmann::json& value) {
+  constexpr std::size_t kMaxChars = 80;
+  std::string text = value.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace);
+  if (text.size() > kMaxChars) {
+    text.resize(kMaxChars);
+    // Cut at a UTF-8 character boundary, then mark the cut.
+    while (!text.empty() && (static_cast<unsigned char>(text.back()) & 0xC0) == 0x80)
+      text.pop_back();
+    if (!text.empty() && static_cast<unsigned char>(text.back()) >= 0xC0) text.pop_back();
+    text += "…";
+  }
+  return text;
+}
+
+}  // namespace
+
+nlohmann::json JsonReader::parse(const std::string& text, const std::string& source) {
+  std::vector<OpenValue> open;
+  using Event = nlohmann::json::parse_event_t;
+  const auto check = [&](int, Event event, nlohmann::json& parsed) {
+    switch (event) {
+      case Event::object_start:
+      case Event::array_start:
+        // Far deeper than any scene or palette; beyond it, dumping a value into an error
+        // message (which recurses) could exhaust the stack.
+        if (open.size() >= kMaxDepth)
+          throw Error(fmt::format("{}: '{}' nests deeper than {} levels", source,
+                                  pathThrough(open, open.size()), kMaxDepth));
+        open.push_back({event == Event::object_start, {}, {}, 0});
+        break;
+      case Event::key: {
+        OpenValue& object = open.back();
+        std::string key = parsed.get<std::string>();
+        if (!object.keys.insert(key).second)
+          throw Error(fmt::format("{}: duplicate key '{}'", source,
+                                  pathThrough(open, open.size() - 1) +
+                                      (open.size() > 1 ? "." : "") + key));
+        object.key = std::move(key);
+        break;
+      }
+      case Event::object_end:
+      case Event::array_end:
+        open.pop_back();
+        [[fallthrough]];
+      case Event::value:
+        // A finished element of the enclosing array moves its index on.
+        if (!open.empty() && !open.back().object) ++open.back().index;
+        break;
+    }
+    return true;
+  };
+  try {
+    return nlohmann::json::parse(text, check);
+  } catch (const nlohmann::json::exception& e) {
+    throw Error(fmt::format("{}: invalid JSON: {}", source, e.what()));
+  }
+}
+
+nlohmann::json JsonReader::parseFile(const std::string& path) {
+  return parse(readTextFile(path, "JSON file"), path);
 }
 
 std::string JsonReader::where() const {
@@ -39,33 +119,33 @@ bool JsonReader::contains(const std::string& key) const {
 }
 
 JsonReader JsonReader::at(const std::string& key) const {
-  if (!value_.is_object()) fail(fmt::format("expected an object, got {}", value_.dump()));
+  if (!value_.is_object()) fail(fmt::format("expected an object, got {}", shown(value_)));
   used_.insert(key);
   if (!value_.contains(key)) fail(fmt::format("missing key '{}'", key));
   return {value_.at(key), file_, childPath(key)};
 }
 
 std::optional<JsonReader> JsonReader::find(const std::string& key) const {
-  if (!value_.is_object()) fail(fmt::format("expected an object, got {}", value_.dump()));
+  if (!value_.is_object()) fail(fmt::format("expected an object, got {}", shown(value_)));
   used_.insert(key);
   if (!value_.contains(key) || value_.at(key).is_null()) return std::nullopt;
   return JsonReader(value_.at(key), file_, childPath(key));
 }
 
 JsonReader JsonReader::at(std::size_t index) const {
-  if (!value_.is_array()) fail(fmt::format("expected an array, got {}", value_.dump()));
+  if (!value_.is_array()) fail(fmt::format("expected an array, got {}", shown(value_)));
   if (index >= value_.size()) fail(fmt::format("index {} is past the end", index));
   return {value_.at(index), file_, fmt::format("{}[{}]", path_, index)};
 }
 
 std::size_t JsonReader::size() const {
   if (!value_.is_array() && !value_.is_object())
-    fail(fmt::format("expected an array or object, got {}", value_.dump()));
+    fail(fmt::format("expected an array or object, got {}", shown(value_)));
   return value_.size();
 }
 
 std::vector<std::string> JsonReader::keys() const {
-  if (!value_.is_object()) fail(fmt::format("expected an object, got {}", value_.dump()));
+  if (!value_.is_object()) fail(fmt::format("expected an object, got {}", shown(value_)));
   std::vector<std::string> out;
   for (auto it = value_.begin(); it != value_.end(); ++it) {
     out.push_back(it.key());
@@ -75,7 +155,7 @@ std::vector<std::string> JsonReader::keys() const {
 }
 
 double JsonReader::number(double lo, double hi) const {
-  if (!value_.is_number()) fail(fmt::format("expected a number, got {}", value_.dump()));
+  if (!value_.is_number()) fail(fmt::format("expected a number, got {}", shown(value_)));
   const double v = value_.get<double>();
   if (!std::isfinite(v) || v < lo || v > hi)
     fail(fmt::format("value {} is outside {}..{}", v, lo, hi));
@@ -83,24 +163,24 @@ double JsonReader::number(double lo, double hi) const {
 }
 
 int JsonReader::integer(int lo, int hi) const {
-  if (!value_.is_number_integer()) fail(fmt::format("expected an integer, got {}", value_.dump()));
+  if (!value_.is_number_integer()) fail(fmt::format("expected an integer, got {}", shown(value_)));
   const auto v = value_.get<long long>();
   if (v < lo || v > hi) fail(fmt::format("value {} is outside {}..{}", v, lo, hi));
   return static_cast<int>(v);
 }
 
 bool JsonReader::boolean() const {
-  if (!value_.is_boolean()) fail(fmt::format("expected true or false, got {}", value_.dump()));
+  if (!value_.is_boolean()) fail(fmt::format("expected true or false, got {}", shown(value_)));
   return value_.get<bool>();
 }
 
 std::string JsonReader::string() const {
-  if (!value_.is_string()) fail(fmt::format("expected a string, got {}", value_.dump()));
+  if (!value_.is_string()) fail(fmt::format("expected a string, got {}", shown(value_)));
   return value_.get<std::string>();
 }
 
 std::vector<double> JsonReader::numbers(std::size_t count) const {
-  if (!value_.is_array()) fail(fmt::format("expected an array of numbers, got {}", value_.dump()));
+  if (!value_.is_array()) fail(fmt::format("expected an array of numbers, got {}", shown(value_)));
   if (count > 0 && value_.size() != count)
     fail(fmt::format("expected {} numbers, got {}", count, value_.size()));
   std::vector<double> out;

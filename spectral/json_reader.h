@@ -14,6 +14,10 @@ namespace svr {
 class JsonReader {
  public:
   JsonReader(const nlohmann::json& value, std::string file, std::string path = "");
+  // Parses JSON text; `source` (the file name) prefixes every error. Besides malformed JSON,
+  // rejects an object that repeats a key (nlohmann keeps the last silently, so a typo-free
+  // but doubled "camera" would drop the first without a word), naming the key path.
+  static nlohmann::json parse(const std::string& text, const std::string& source);
   static nlohmann::json parseFile(const std::string& path);
 
   const nlohmann::json& json() const { return value_; }

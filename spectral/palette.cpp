@@ -8,7 +8,11 @@
 namespace svr {
 
 Palette loadPalette(const std::string& path, const SpectrumLibrary& library) {
-  const nlohmann::json json = JsonReader::parseFile(path);
+  return parsePalette(JsonReader::parseFile(path), path, library);
+}
+
+Palette parsePalette(const nlohmann::json& json, const std::string& path,
+                     const SpectrumLibrary& library) {
   const JsonReader root(json, path);
   if (!root.isObject()) root.fail("expected a JSON object");
   const auto base = std::filesystem::path(path).parent_path();

@@ -6,6 +6,7 @@
 // JSON: {"lights": [SPEC, …], "materials": [SPEC, …]} where SPEC is a spectrum in the form of
 // spectrum_spec.h; objects also give a "name" (a library name is its own name).
 
+#include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
 
@@ -24,5 +25,8 @@ struct Palette {
 };
 
 Palette loadPalette(const std::string& path, const SpectrumLibrary& library);
+// The same from JSON already in memory; `path` names it and anchors relative CSV paths.
+Palette parsePalette(const nlohmann::json& json, const std::string& path,
+                     const SpectrumLibrary& library);
 
 }  // namespace svr

@@ -2,7 +2,22 @@
 // that this CPU has, and the fixed-width instantiation when the plane count has one.
 #include "spectral/relight_kernel.h"
 
+#if defined(__x86_64__) || defined(__i386__)
+#include <cpuid.h>
+#endif
+
 namespace svr {
+
+#if defined(__x86_64__) || defined(__i386__)
+namespace {
+// F16C from CPUID leaf 1 directly: clang before 15 rejects __builtin_cpu_supports("f16c"),
+// and the fuzz preset builds with clang 14.
+bool cpuHasF16c() {
+  unsigned eax = 0, ebx = 0, ecx = 0, edx = 0;
+  return __get_cpuid(1, &eax, &ebx, &ecx, &edx) != 0 && (ecx & bit_F16C) != 0;
+}
+}  // namespace
+#endif
 
 const char* toString(KernelIsa isa) {
   switch (isa) {
@@ -18,7 +33,7 @@ const std::vector<KernelIsa>& availableKernelIsas() {
 #if defined(__x86_64__) || defined(__i386__)
     __builtin_cpu_init();
     if (relight_avx2::compiled() && __builtin_cpu_supports("avx2") &&
-        __builtin_cpu_supports("f16c") && __builtin_cpu_supports("fma"))
+        cpuHasF16c() && __builtin_cpu_supports("fma"))
       out.push_back(KernelIsa::kAvx2);
 #endif
     return out;

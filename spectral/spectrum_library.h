@@ -28,6 +28,11 @@ class SpectrumLibrary {
   SpectrumKind kind(const std::string& name) const;
   std::vector<std::string> closestNames(const std::string& name, int count) const;
 
+  // Adds a spectrum under a new name (a scene's designed palette, say); it must be on grid().
+  void define(const std::string& name, Spectrum s, SpectrumKind kind) {
+    add(name, std::move(s), kind);
+  }
+
   const WavelengthGrid& grid() const { return grid_; }
   const std::vector<std::string>& lightNames() const { return light_names_; }
   const std::vector<std::string>& colorCheckerNames() const { return colorchecker_names_; }

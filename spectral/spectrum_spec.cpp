@@ -19,7 +19,7 @@ Spectrum parseSpectrumSpec(const JsonReader& spec, const SpectrumLibrary& librar
   if (spec.isString()) return named(spec.string());
   if (!spec.isObject())
     spec.fail(fmt::format("expected a spectrum (a library name or an object), got {}",
-                          spec.json().dump()));
+                          spec.json().dump(-1, ' ', false, nlohmann::json::error_handler_t::replace)));
   for (const char* key : {"name", "scale", "library", "csv", "column", "wavelengths", "values",
                           "constant"})
     spec.find(key);  // "name" is the caller's; the rest are read below
@@ -30,7 +30,14 @@ Spectrum parseSpectrumSpec(const JsonReader& spec, const SpectrumLibrary& librar
   if (auto lib = spec.find("library")) s = named(lib->string()), ++forms;
   if (auto csv = spec.find("csv")) {
     ++forms;
-    const CsvTable table = loadCsvTable((base_dir / csv->string()).string());
+    // The table's own errors name the CSV file; add which input file and key named it.
+    const CsvTable table = [&] {
+      try {
+        return loadCsvTable((base_dir / csv->string()).string());
+      } catch (const Error& e) {
+        csv->fail(e.what());
+      }
+    }();
     const std::string column = spec.at("column").string();
     const int c = table.columnIndex(column);
     if (c < 0)
@@ -45,11 +52,8 @@ Spectrum parseSpectrumSpec(const JsonReader& spec, const SpectrumLibrary& librar
     ++forms;
     const auto w = wl->numbers(0);
     const auto v = spec.at("values").numbers(0);
-    try {
-      s = Spectrum::resample(library.grid(), w, v, OutsideRange::kError, spec.where());
-    } catch (const Error& e) {
-      spec.fail(e.what());
-    }
+    // resample's errors already start with spec.where(): file and key.
+    s = Spectrum::resample(library.grid(), w, v, OutsideRange::kError, spec.where());
   }
   if (auto c = spec.find("constant")) {
     ++forms;

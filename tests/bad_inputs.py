@@ -3,13 +3,15 @@
 
 A case passes when svr exits with a non-zero status (a signal, e.g. a sanitizer abort or a
 segfault, is a failure), prints "svr: error: " with the expected substring (which names the
-file, key and value), and leaves no file behind in the output folder it was given.
+file, key and value) and without naming them twice, and leaves no file behind in the output
+folder it was given.
 
 Usage: bad_inputs.py SVR_BINARY CASES_FILE [--data DATA_DIR]
 Each line of CASES_FILE is `EXPECTED SUBSTRING :: ARGS`, with {bad} (the folder of the cases
 file), {out} (an empty folder for this case) and {data} (the shipped data folder) substituted.
 """
 import os
+import re
 import shlex
 import subprocess
 import sys
@@ -54,6 +56,11 @@ def main() -> int:
             expected = expected.format(bad=bad, out=out, data=data)
             if expected not in stderr:
                 problems.append(f"message lacks '{expected}'")
+            # An error re-wrapped by a caller that adds what it already says: "a.json: model:
+            # a.json: model: …".
+            doubled = re.search(r"((?:[^\s:]+: ){2,})\1", stderr)
+            if doubled:
+                problems.append(f"message repeats '{doubled.group(1)}'")
             left = [os.path.relpath(os.path.join(d, n), scratch)
                     for d, _, names in os.walk(scratch) for n in names]
             if left:

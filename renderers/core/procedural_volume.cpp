@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include <cmath>
+#include <cstring>
 #include <limits>
 #include <numbers>
 
@@ -22,13 +23,16 @@ Volume sample(Dims dims, glm::dvec3 spacing, const std::string& name, F f) {
   const std::uint64_t bytes =
       volumeBytes({dims[0], dims[1], dims[2]}, ScalarType::kFloat32, name);  // dims ≥ 1
   const glm::dvec3 centre = 0.5 * glm::dvec3(dims[0] - 1, dims[1] - 1, dims[2] - 1);
-  std::vector<float> values;
-  values.reserve(bytes / sizeof(float));
+  // Straight into the Volume's bytes: a float vector copied over would double the peak memory.
+  std::vector<std::byte> data(bytes);
+  std::size_t at = 0;
   for (int z = 0; z < dims[2]; ++z)
     for (int y = 0; y < dims[1]; ++y)
-      for (int x = 0; x < dims[0]; ++x)
-        values.push_back(static_cast<float>(f((glm::dvec3(x, y, z) - centre) * spacing)));
-  return Volume::fromValues(dims, spacing, values, name);
+      for (int x = 0; x < dims[0]; ++x, at += sizeof(float)) {
+        const auto value = static_cast<float>(f((glm::dvec3(x, y, z) - centre) * spacing));
+        std::memcpy(data.data() + at, &value, sizeof(float));
+      }
+  return Volume(dims, spacing, ScalarType::kFloat32, std::move(data), name);
 }
 
 }  // namespace

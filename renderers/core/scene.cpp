@@ -8,10 +8,12 @@
 #include <glm/geometric.hpp>
 #include <map>
 
+#include "renderers/core/scene_palette.h"
 #include "renderers/core/scene_volume.h"
 #include "spectral/colour_model.h"
 #include "spectral/error.h"
 #include "spectral/json_reader.h"
+#include "spectral/light_mixer.h"
 #include "spectral/spectrum_spec.h"
 
 namespace svr {
@@ -151,8 +153,14 @@ Scene parseScene(const nlohmann::json& json, const std::string& file,
   scene.volume = std::move(volume.volume);
   scene.volume_source = volume.source;
 
+  // A designed palette's spectra join the library as "palette/NAME" for this scene only.
+  std::optional<SpectrumLibrary> with_palette;
+  if (auto palette = root.find("palette"))
+    with_palette = withScenePalette(*palette, base, library);
+  const SpectrumLibrary& spectra = with_palette ? *with_palette : library;
+
   scene.transfer_function = parseTransferFunction(
-      root.at("transfer_function"), parseMaterials(root.at("materials"), library, base));
+      root.at("transfer_function"), parseMaterials(root.at("materials"), spectra, base));
 
   const JsonReader lights = root.at("lights");
   if (!lights.isArray() || lights.size() == 0) lights.fail("needs at least one light");
@@ -161,12 +169,24 @@ Scene parseScene(const nlohmann::json& json, const std::string& file,
     const std::string name = l.isString() ? l.string() : l.at("name").string();
     for (const auto& other : scene.lights)
       if (other.name == name) l.fail(fmt::format("light name '{}' is used twice", name));
-    scene.lights.push_back({name, parseSpectrumSpec(l, library, base)});
+    scene.lights.push_back({name, parseSpectrumSpec(l, spectra, base)});
   }
   if (auto mixes = root.find("light_mixes")) {
     for (const std::string& name : mixes->keys()) {
       const JsonReader mix = mixes->at(name);
       LightMix m{name, {}};
+      if (auto handle = mix.find("ngon")) {
+        // A handle position in the n-gon mixer (paper §3.3): the scene's lights on a regular
+        // polygon in their listed order, weights by normalised inverse squared distance.
+        const auto xy = handle->numbers(2);
+        const auto weights = LightMixer::regularPolygon(static_cast<int>(scene.lights.size()))
+                                 .weights(xy[0], xy[1]);
+        for (size_t i = 0; i < weights.size(); ++i)
+          if (weights[i] > 0) m.weights.emplace_back(static_cast<int>(i), weights[i]);
+        mix.rejectUnknownKeys();
+        scene.mixes.push_back(std::move(m));
+        continue;
+      }
       for (const std::string& light : mix.keys()) {
         int index = -1;
         for (size_t i = 0; i < scene.lights.size(); ++i)
@@ -210,18 +230,22 @@ Scene parseScene(const nlohmann::json& json, const std::string& file,
     scene.shading.shininess = shading->number("shininess", scene.shading.shininess, 1.0, 1e4);
     shading->rejectUnknownKeys();
   }
-  if (auto bg = root.find("background")) scene.background = parseSpectrumSpec(*bg, library, base);
+  if (auto bg = root.find("background")) scene.background = parseSpectrumSpec(*bg, spectra, base);
   if (auto model = root.find("model")) {
     scene.model = model->string();
     if (scene.model != "auto") {
-      try {
-        const ModelName name = parseModelName(scene.model);
-        if (name.kind == ModelKind::kLinear)
-          model->fail("linear:k has no componentwise product; the renderers take rgb, factor:k, "
-                      "spectral:n or auto");
-      } catch (const Error& e) {
-        model->fail(e.what());
-      }
+      // Only parseModelName's message lacks the file and key; failing inside the try would
+      // name them twice ("scene.json: model: scene.json: model: …").
+      const ModelName name = [&] {
+        try {
+          return parseModelName(scene.model);
+        } catch (const Error& e) {
+          model->fail(e.what());
+        }
+      }();
+      if (name.kind == ModelKind::kLinear)
+        model->fail("linear:k has no componentwise product; the renderers take rgb, factor:k, "
+                    "spectral:n or auto");
     }
   }
   scene.auto_target = root.number("model_target", 1.0, 1e-3, 100.0);

@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include "renderers/core/memory_budget.h"
 #include "renderers/core/procedural_volume.h"
 #include "spectral/error.h"
 
@@ -56,6 +57,13 @@ SceneVolume loadSceneVolume(const JsonReader& spec, const fs::path& base_dir,
   const std::string kind = spec.at("procedural").string();
   const int size = spec.integer("size", 64, 2, 1024);
   const glm::dvec3 spacing(1.0);
+  // Procedural volumes are float32 and, like files, must fit the budget before a voxel is made
+  // (1024³ would be 4 GiB).
+  const Dims dims = kind == "phantom" ? cube(kPhantomSize) : cube(size);
+  checkMemoryBudget(volumeBytes({dims[0], dims[1], dims[2]}, ScalarType::kFloat32, spec.where()),
+                    options.memory_budget,
+                    fmt::format("{}: procedural {} {}", spec.where(), kind,
+                                describeShape(dims, ScalarType::kFloat32)));
   SceneVolume out;
   if (kind == "marschner_lobb") {
     out.volume = marschnerLobbVolume(size);

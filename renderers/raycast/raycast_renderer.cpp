@@ -8,6 +8,7 @@
 
 #include "renderers/raycast/raycast_kernel.h"
 #include "spectral/error.h"
+#include "spectral/json_reader.h"
 
 namespace svr {
 namespace {
@@ -35,6 +36,12 @@ TileFn pickKernel(int k, bool dynamic_width) {
 
 LightIndependentImage RaycastRenderer::render(const RenderRequest& req,
                                               const ProgressFn& progress) const {
+  // raycast reads no options: any key given for it is a typo or meant for another backend.
+  if (req.options.is_object() && req.options.contains(name())) {
+    const JsonReader options(req.options.at(name()), "render.options", name());
+    if (!options.isObject()) options.fail("expected an object of options for this backend");
+    options.rejectUnknownKeys();
+  }
   const ClassifiedVolume& cv = req.volume;
   if (cv.k > raycast::kMaxChannels)
     throw Error(fmt::format("raycast: {} channels exceed the supported {}", cv.k,

@@ -44,7 +44,16 @@ TEST(CsvTable, MissingFileNamesThePath) {
     loadCsvTable("/nonexistent/spectra.csv");
     FAIL();
   } catch (const Error& e) {
-    EXPECT_STREQ(e.what(), "/nonexistent/spectra.csv: cannot open spectrum table");
+    EXPECT_STREQ(e.what(), "/nonexistent/spectra.csv: cannot open spectrum table: no such file");
+  }
+}
+
+TEST(CsvTable, ADeviceIsRefusedNotReadForever) {
+  try {
+    loadCsvTable("/dev/zero");
+    FAIL();
+  } catch (const Error& e) {
+    EXPECT_STREQ(e.what(), "/dev/zero: cannot open spectrum table: not a regular file");
   }
 }
 

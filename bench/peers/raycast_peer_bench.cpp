@@ -1,0 +1,107 @@
+// Our raycaster on the views bench/peers/vtk_bench.py gives VTK's
+// vtkFixedPointVolumeRayCastMapper, so the two time the same volume, transfer function, camera,
+// sample distance (the scene's step, 0.5 voxel) and image size:
+//   Raycast/<rgb|factor:6>/<size>/az<deg>     RaycastRenderer::render, classification cached
+// Threads: OMP_NUM_THREADS (bench/peers/run sets it equal to VTK's SetNumberOfThreads).
+//
+// --export=PREFIX writes PREFIX.json (dims, spacing, step, termination, shading, light
+// direction, the camera of every azimuth, and the per-value tables of peer_scene.h) and
+// PREFIX.raw (the engine's uint8 voxels, x fastest) for the VTK script, then exits: the peer is
+// set up from our numbers rather than from a second reading of the scene file.
+#include <benchmark/benchmark.h>
+#include <fmt/format.h>
+
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <string>
+
+#include "bench/peers/peer_scene.h"
+#include "renderers/registry.h"
+#include "spectral/error.h"
+
+namespace svr::peers {
+namespace {
+
+// The scene's azimuth, an axis view and one near the 45° diagonal.
+constexpr double kAzimuths[] = {-60.0, 0.0, 44.0};
+
+void raycastFrame(benchmark::State& state, const std::string& model, int size, double azimuth) {
+  const ClassifiedVolume& cv = engineClassified(model);
+  const auto renderer = makeRenderer("raycast");
+  const RenderRequest request = engineRequest(cv, azimuth, size);
+  for (auto _ : state) {
+    auto image = renderer->render(request, nullptr);
+    benchmark::DoNotOptimize(image.planeFloat(0).data());
+  }
+}
+
+void exportScene(const std::string& prefix) {
+  const Scene& scene = engineBenchScene().scene;
+  const Volume& volume = scene.volume;
+  if (volume.type() != ScalarType::kUint8)
+    throw Error("raycast peer bench: the engine volume must be uint8");
+  const ValueTables t = engineValueTables();
+  nlohmann::json j;
+  j["dims"] = volume.dims();
+  j["spacing"] = {volume.spacing().x, volume.spacing().y, volume.spacing().z};
+  j["step_world"] = scene.stepWorld();
+  j["termination"] = scene.termination;
+  j["shading"] = {{"ambient", scene.shading.ambient},
+                  {"diffuse", scene.shading.diffuse},
+                  {"specular", scene.shading.specular},
+                  {"shininess", scene.shading.shininess}};
+  const glm::dvec3 l = scene.light_direction.value_or(glm::dvec3(0.0));
+  j["light_direction"] = {l.x, l.y, l.z};
+  j["headlight"] = !scene.light_direction.has_value();
+  for (double az : kAzimuths) {
+    const Camera c = engineCamera(az);
+    j["cameras"].push_back({{"azimuth", az},
+                            {"eye", {c.eye.x, c.eye.y, c.eye.z}},
+                            {"target", {c.target.x, c.target.y, c.target.z}},
+                            {"up", {c.up.x, c.up.y, c.up.z}},
+                            {"ortho_height", c.ortho_height}});
+  }
+  j["opacity_per_unit_length"] = t.opacity;
+  j["rgb"] = t.rgb;
+  j["specular_weight"] = t.specular;
+  std::ofstream(prefix + ".json") << j.dump(1) << '\n';
+  std::ofstream raw(prefix + ".raw", std::ios::binary);
+  raw.write(reinterpret_cast<const char*>(volume.data().data()),
+            static_cast<std::streamsize>(volume.bytes()));
+  if (!raw) throw Error(fmt::format("{}.raw: cannot write", prefix));
+}
+
+void registerAll() {
+  for (int size : {512, 800})
+    for (double az : kAzimuths)
+      for (const char* model : {"rgb", "factor:6"})
+        benchmark::RegisterBenchmark(fmt::format("Raycast/{}/{}/az{}", model, size, az).c_str(),
+                                     raycastFrame, std::string(model), size, az)
+            ->UseRealTime()
+            ->Unit(benchmark::kMillisecond)
+            ->MinTime(0.5);
+}
+
+}  // namespace
+}  // namespace svr::peers
+
+int main(int argc, char** argv) {
+  try {
+    for (int i = 1; i < argc; ++i) {
+      const std::string arg = argv[i];
+      if (arg.rfind("--export=", 0) == 0) {
+        svr::peers::exportScene(arg.substr(9));
+        return 0;
+      }
+    }
+    svr::peers::registerAll();
+    benchmark::Initialize(&argc, argv);
+    if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 2;
+    benchmark::RunSpecifiedBenchmarks();
+    benchmark::Shutdown();
+  } catch (const std::exception& e) {
+    fmt::print(stderr, "svr_raycast_peer_bench: {}\n", e.what());
+    return 1;
+  }
+  return 0;
+}

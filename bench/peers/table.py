@@ -1,0 +1,119 @@
+#!/usr/bin/env python3
+"""The peer table from the JSON files bench/peers/run leaves in its output folder: every peer
+time beside ours on the same view, size and thread count, and ours/peer (< 1: we are faster).
+
+  python3 bench/peers/table.py out/peers              (prints; writes out/peers/peers.json)
+  python3 bench/peers/table.py out/peers --markdown   (the same as markdown, for docs/performance.md)
+
+Inputs (any may be missing; its rows are then left out):
+  volpack_t1.json, volpack_t2.json   svr_volpack_bench (Google Benchmark JSON); VolPack is
+                                     single-threaded, so its time is the t1 run's in both
+  raycast_t<N>.json                  svr_raycast_peer_bench at OMP_NUM_THREADS=N
+  vtk_t<N>.json                      vtk_bench.py --threads N
+"""
+import glob
+import json
+import math
+import os
+import re
+import sys
+
+
+def bench_times(path):
+    """name -> ms per frame, without Google Benchmark's /min_time:…/real_time suffixes."""
+    out = {}
+    for b in json.load(open(path))["benchmarks"]:
+        if b.get("run_type", "iteration") != "iteration":
+            continue
+        name = "/".join(p for p in b["name"].split("/")
+                        if p != "real_time" and not p.startswith(("min_time:", "iterations:")))
+        scale = {"ns": 1e-6, "us": 1e-3, "ms": 1.0, "s": 1e3}[b["time_unit"]]
+        out[name] = b["real_time"] * scale
+    return out
+
+
+def threads_of(path):
+    return int(re.search(r"_t(\d+)\.json$", path).group(1))
+
+
+def main():
+    if len(sys.argv) not in (2, 3) or (len(sys.argv) == 3 and sys.argv[2] != "--markdown"):
+        sys.exit(__doc__)
+    folder = sys.argv[1]
+    markdown = len(sys.argv) == 3
+    rows = []
+    # VolPack against our shear-warp: VolPack's own time always comes from the 1-thread run.
+    vp1 = os.path.join(folder, "volpack_t1.json")
+    if os.path.exists(vp1):
+        peer = bench_times(vp1)
+        for path in sorted(glob.glob(os.path.join(folder, "volpack_t*.json"))):
+            ours, threads = bench_times(path), threads_of(path)
+            for name, ms in ours.items():
+                if not name.startswith("Shearwarp/"):
+                    continue
+                _, model, size, view = name.split("/")
+                pairs = [("rgb", "VolPack rgb")] + ([("grey", "VolPack grey")] if model == "rgb" else [])
+                for colour, label in pairs:
+                    p = peer.get(f"VolPack/{colour}/{size}/{view}")
+                    if p:
+                        rows.append(dict(peer=label, peer_threads=1, ours="shearwarp", model=model,
+                                         size=int(size), view=view, threads=threads,
+                                         peer_ms=p, ours_ms=ms, ratio=ms / p))
+    # VTK's fixed-point ray caster against our raycaster, at equal threads.
+    for path in sorted(glob.glob(os.path.join(folder, "vtk_t*.json"))):
+        threads = threads_of(path)
+        ours_path = os.path.join(folder, f"raycast_t{threads}.json")
+        if not os.path.exists(ours_path):
+            continue
+        ours = bench_times(ours_path)
+        for rec in json.load(open(path))["runs"]:
+            _, _, size, view = rec["name"].split("/")
+            for model in ("rgb", "factor:6"):
+                ms = ours.get(f"Raycast/{model}/{size}/{view}")
+                if ms:
+                    rows.append(dict(peer="VTK fixed-point", peer_threads=threads, ours="raycast",
+                                     model=model, size=int(size), view=view, threads=threads,
+                                     peer_ms=rec["ms"], ours_ms=ms, ratio=ms / rec["ms"]))
+    if not rows:
+        sys.exit(f"table: no peer results in {folder}")
+
+    gm = lambda xs: math.exp(sum(math.log(x) for x in xs) / len(xs))
+    groups = {}
+    for r in rows:
+        key = (r["peer"], r["ours"], r["model"], r["size"], r["peer_threads"], r["threads"])
+        groups.setdefault(key, []).append(r)
+    summary = [dict(peer=peer, ours=ours, model=model, size=size, peer_threads=pt, threads=t,
+                    peer_ms=gm([r["peer_ms"] for r in rs]), ours_ms=gm([r["ours_ms"] for r in rs]),
+                    ratio=gm([r["ratio"] for r in rs]), views=len(rs))
+               for (peer, ours, model, size, pt, t), rs in groups.items()]
+    cols = ["peer", "ours", "model", "size", "view", "threads", "peer ms", "ours ms", "ratio"]
+    cell = lambda r: [r["peer"], r["ours"], r["model"], f"{r['size']}²", r.get("view", "all"),
+                      f"{r['peer_threads']}/{r['threads']}", f"{r['peer_ms']:.1f}",
+                      f"{r['ours_ms']:.1f}", f"{r['ratio']:.2f}"]
+    load = " ".join(f"{x:.1f}" for x in os.getloadavg())
+    if markdown:
+        for title, table in (("Geometric mean over the views", summary), ("Every view", rows)):
+            print(f"**{title}** (threads: peer/ours; ratio = ours / peer, < 1: ours is faster)\n")
+            print("| " + " | ".join(cols) + " |")
+            print("|" + "---|" * 5 + "---:|" * 4)
+            for r in table:
+                print("| " + " | ".join(cell(r)) + " |")
+            print()
+        print(f"Load average when the table was made: {load}.")
+    else:
+        widths = [16, 10, 9, 6, 6, 7, 9, 9, 6]
+        line = lambda vals: " ".join(f"{v:<{w}}" if i < 3 else f"{v:>{w}}"
+                                     for i, (v, w) in enumerate(zip(vals, widths)))
+        for title, table in (("Every view", rows), ("Geometric mean over the views", summary)):
+            print(f"\n{title}")
+            print(line(cols))
+            for r in table:
+                print(line(cell(r)))
+        print("(threads: peer/ours; ratio = ours / peer, < 1 means ours is faster; "
+              f"load average {load})")
+    with open(os.path.join(folder, "peers.json"), "w") as f:
+        json.dump({"rows": rows, "summary": summary, "load_average": os.getloadavg()}, f, indent=1)
+
+
+if __name__ == "__main__":
+    main()
