@@ -64,7 +64,9 @@ void exportScene(const std::string& prefix) {
   j["opacity_per_unit_length"] = t.opacity;
   j["rgb"] = t.rgb;
   j["specular_weight"] = t.specular;
-  std::ofstream(prefix + ".json") << j.dump(1) << '\n';
+  std::ofstream json_out(prefix + ".json");
+  json_out << j.dump(1) << '\n';
+  if (!json_out) throw Error(fmt::format("{}.json: cannot write", prefix));
   std::ofstream raw(prefix + ".raw", std::ios::binary);
   raw.write(reinterpret_cast<const char*>(volume.data().data()),
             static_cast<std::streamsize>(volume.bytes()));
