@@ -24,30 +24,6 @@
 
 namespace svr {
 
-GlSplatSettings readGlSplatSettings(const nlohmann::json& options) {
-  // The CPU splat backend's defaults, so that the two agree unless told otherwise.
-  const SplatSettings cpu;
-  GlSplatSettings s;
-  s.sigma = cpu.sigma;
-  s.radius = cpu.radius;
-  s.sheet_voxels = cpu.sheet_voxels;
-  s.lowpass = cpu.lowpass;
-  if (!options.is_object() || !options.contains("gl")) return s;
-  const JsonReader r(options.at("gl"), "render options", "gl");
-  if (!r.isObject()) r.fail(fmt::format("expected an object, got {}", r.json().dump()));
-  const std::string mode = r.string("mode", "sheet");
-  if (mode == "direct")
-    s.mode = GlSplatSettings::Mode::kDirect;
-  else if (mode != "sheet")
-    r.at("mode").fail(fmt::format("'{}' is not sheet or direct", mode));
-  s.sigma = r.number("sigma", s.sigma, 0.25, 4.0);
-  s.radius = r.number("radius", s.radius, 0.5, 8.0);
-  s.sheet_voxels = r.number("sheet", s.sheet_voxels, 0.1, 8.0);
-  s.lowpass = r.number("lowpass", s.lowpass, 0.0, 4.0);
-  r.rejectUnknownKeys();
-  return s;
-}
-
 namespace {
 
 using gl::PassOutput;
@@ -148,7 +124,7 @@ struct GlSplatRenderer::State {
     nodes = gl::GlObject(id, gl.DeleteTextures);
     gl.TextureStorage3D(id, 1, GL_R32F, nx, ny, nz);
     gl.TextureSubImage3D(id, 0, 0, 0, 0, nx, ny, nz, GL_RED, GL_FLOAT,
-                         gl::shadingNodes(cv).data());
+                         fresh->splat_voxels->cellMeans().data());
     context.check("uploading the voxel list");
     list = std::move(fresh);
     uploaded_for = cv.derived;
@@ -160,7 +136,7 @@ GlSplatRenderer::~GlSplatRenderer() = default;
 
 LightIndependentImage GlSplatRenderer::render(const RenderRequest& req,
                                               const ProgressFn& progress) const {
-  const GlSplatSettings settings = readGlSplatSettings(req.options);
+  const SplatSettings settings = readSplatSettings(req.options, "gl");
   const ClassifiedVolume& cv = req.volume;
   const int W = req.width, H = req.height, k = cv.k, kt = cv.t_channels;
   const bool scalar = kt == 1;
@@ -382,7 +358,7 @@ LightIndependentImage GlSplatRenderer::render(const RenderRequest& req,
     s_target.clear(0.f, scalar ? 1.f : 0.f);  // scalar: alpha holds T
   }
 
-  if (settings.mode == GlSplatSettings::Mode::kDirect) {
+  if (settings.mode == SplatSettings::Mode::kDirect) {
     compositeS(splatProgram, [&] { drawSlots(0, n); });
     if (progress) progress(0.9);
   } else {

@@ -42,14 +42,6 @@
 
 namespace svr {
 
-struct GlSplatSettings {
-  enum class Mode { kSheet, kDirect } mode = Mode::kSheet;
-  double sigma, radius, sheet_voxels, lowpass;  // defaults: SplatSettings's
-};
-
-// Reads options["gl"] (unknown keys and out-of-range values are svr::Error).
-GlSplatSettings readGlSplatSettings(const nlohmann::json& options);
-
 class GlSplatRenderer final : public Renderer {
  public:
   GlSplatRenderer();

@@ -44,27 +44,4 @@ std::shared_ptr<const GlVoxelList> GlVoxelList::of(const ClassifiedVolume& cv) {
   });
 }
 
-std::vector<float> shadingNodes(const ClassifiedVolume& cv) {
-  const Dims& d = cv.dims;
-  const int nx = d[0] + 1, ny = d[1] + 1, nz = d[2] + 1;
-  std::vector<float> nodes(static_cast<std::size_t>(nx) * ny * nz);
-  const auto field = [&](int x, int y, int z) {
-    x = std::clamp(x, 0, d[0] - 1);
-    y = std::clamp(y, 0, d[1] - 1);
-    z = std::clamp(z, 0, d[2] - 1);
-    return cv.shading_field[x + static_cast<std::size_t>(d[0]) *
-                                    (y + static_cast<std::size_t>(d[1]) * z)];
-  };
-#pragma omp parallel for schedule(static)
-  for (int k = 0; k < nz; ++k)
-    for (int j = 0; j < ny; ++j)
-      for (int i = 0; i < nx; ++i) {
-        float sum = 0.f;
-        for (int c = 0; c < 8; ++c)
-          sum += field(i - 1 + (c & 1), j - 1 + ((c >> 1) & 1), k - 1 + ((c >> 2) & 1));
-        nodes[(static_cast<std::size_t>(k) * ny + j) * nx + i] = sum * 0.125f;
-      }
-  return nodes;
-}
-
 }  // namespace svr::gl

@@ -37,9 +37,4 @@ struct GlVoxelList {
   std::vector<float> tables;
 };
 
-// The shading field averaged over the ≤ 8 voxels around each dual-grid node, (nx + 1)(ny + 1)
-// (nz + 1) values, x fastest: the field whose central differences SplatVoxels::gradientAtNode
-// takes (the same sums in the same order, so the same floats).
-std::vector<float> shadingNodes(const ClassifiedVolume& volume);
-
 }  // namespace svr::gl

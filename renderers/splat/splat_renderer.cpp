@@ -14,10 +14,10 @@
 
 namespace svr {
 
-SplatSettings readSplatSettings(const nlohmann::json& options) {
+SplatSettings readSplatSettings(const nlohmann::json& options, const std::string& backend) {
   SplatSettings s;
-  if (!options.is_object() || !options.contains("splat")) return s;
-  const JsonReader r(options.at("splat"), "render options", "splat");
+  if (!options.is_object() || !options.contains(backend)) return s;
+  const JsonReader r(options.at(backend), "render options", backend);
   if (!r.isObject()) r.fail(fmt::format("expected an object, got {}", r.json().dump()));
   const std::string mode = r.string("mode", "sheet");
   if (mode == "direct")

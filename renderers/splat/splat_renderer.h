@@ -35,8 +35,10 @@ struct SplatSettings {
   double lowpass = 0.0;
 };
 
-// Reads options["splat"] (unknown keys and out-of-range values are svr::Error).
-SplatSettings readSplatSettings(const nlohmann::json& options);
+// Reads options[backend] — "splat", or "gl", which runs the same algorithm on OpenGL (unknown
+// keys and out-of-range values are svr::Error).
+SplatSettings readSplatSettings(const nlohmann::json& options,
+                                const std::string& backend = "splat");
 
 class SplatRenderer final : public Renderer {
  public:

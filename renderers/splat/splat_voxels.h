@@ -34,6 +34,8 @@ class SplatVoxels {
   // [0, nx]: the corner (i − ½, j − ½, k − ½) of the voxel grid, where the raycaster's
   // central difference of the trilinear field takes exactly these cell averages.
   void gradientAtNode(int i, int j, int k, float g[3]) const;
+  // The cell means themselves, x fastest: the gl backend uploads them as a 3D texture.
+  std::span<const float> cellMeans() const { return cell_mean_; }
 
  private:
   float node(int i, int j, int k) const {

@@ -220,7 +220,7 @@ TEST(GlSplat, FootprintsWiderThanAPointAreQuads) {
 TEST(GlSplat, BadOptionsNameTheKeyAndValue) {
   const auto expectError = [](const nlohmann::json& options, const std::string& part) {
     try {
-      readGlSplatSettings(options);
+      readSplatSettings(options, "gl");
       FAIL() << options.dump();
     } catch (const Error& e) {
       EXPECT_NE(std::string(e.what()).find(part), std::string::npos) << e.what();
@@ -230,9 +230,9 @@ TEST(GlSplat, BadOptionsNameTheKeyAndValue) {
   expectError({{"gl", {{"radius", -1}}}}, "gl.radius");
   expectError({{"gl", {{"sheet", 0.05}}}}, "gl.sheet");
   expectError({{"gl", {{"sigmma", 0.7}}}}, "sigmma");
-  EXPECT_NO_THROW(readGlSplatSettings({{"splat", {{"anything", 1}}}}));
-  EXPECT_EQ(readGlSplatSettings({{"gl", {{"mode", "direct"}}}}).mode,
-            GlSplatSettings::Mode::kDirect);
+  EXPECT_NO_THROW(readSplatSettings({{"splat", {{"anything", 1}}}}, "gl"));
+  EXPECT_EQ(readSplatSettings({{"gl", {{"mode", "direct"}}}}, "gl").mode,
+            SplatSettings::Mode::kDirect);
 }
 
 // An image wider than GL_MAX_TEXTURE_SIZE is refused, naming the limit, before anything is
