@@ -120,6 +120,15 @@ int runDesign(const DesignCommandOptions& o) {
   design["converged"] = r.converged;
   design["history"] = r.history;
   design["misses"] = r.misses;
+  if (palette.options.projection_k > 0) {
+    // Every light × material: what the scene's factor:k keeps of it (TOG 2009's F(E) term).
+    nlohmann::json projection = nlohmann::json::array();
+    for (const auto& p : r.projection)
+      projection.push_back({{"material", p.material}, {"light", p.light}, {"de2000", p.de2000}});
+    design["projection"] = {{"model", fmt::format("factor:{}", palette.options.projection_k)},
+                            {"rounds", r.projection_rounds},
+                            {"cells", projection}};
+  }
   writeTextAtomically(out / "design.json", design.dump(2) + "\n");
 
   writeSwatches(palette, r, observer, (out / "palette.png").string());
@@ -143,6 +152,16 @@ int runDesign(const DesignCommandOptions& o) {
     fmt::print("objective {:.6g} (unconstrained first solve {:.6g}), {} iteration(s), {}\n",
                r.objective, r.unconstrained_objective, r.iterations,
                r.converged ? "converged" : "iteration cap reached");
+    if (!r.projection.empty()) {
+      const auto worst = *std::max_element(r.projection.begin(), r.projection.end(),
+                                           [](const auto& a, const auto& b) { return a.de2000 < b.de2000; });
+      double mean = 0;
+      for (const auto& p : r.projection) mean += p.de2000 / r.projection.size();
+      fmt::print("projection onto factor:{} ({} subspace round(s)): every light × material mean "
+                 "ΔE2000 {:.3f}, worst {:.3f} ({} under {})\n",
+                 palette.options.projection_k, r.projection_rounds, mean, worst.de2000,
+                 worst.material, worst.light);
+    }
   }
   for (const auto& m : r.misses) fmt::print(stderr, "design: miss: {}\n", m);
   if (o.strict && !r.misses.empty())

@@ -203,6 +203,8 @@ DesignPalette parseDesignPalette(const nlohmann::json& json, const std::string& 
       opt.projection_k = k;
     }
     opt.projection_weight = o->number("projection_weight", opt.projection_weight, 0.0, 1e6);
+    opt.projection_de2000 = o->number("projection_de2000", opt.projection_de2000, 0.0, 100.0);
+    opt.projection_rounds = o->integer("projection_rounds", opt.projection_rounds, 1, 1000);
     opt.light_luminance = o->number("light_luminance", opt.light_luminance, 1e-6, 1e6);
     opt.max_iterations = o->integer("max_iterations", opt.max_iterations, 1, 100000);
     opt.miss_de2000 = o->number("miss_de2000", opt.miss_de2000, 0.0);

@@ -12,7 +12,8 @@
 //                  "lab": [L,a,b] | "like": SPEC | "black": true), "weight": w?}, …],
 //    "metamers": [{"light": L, "materials": [M, …], "weight": w?}, …],
 //    "options":  {"smoothness", "bounds": "physical"|"artificial", "projection_model":
-//                 "none"|"factor:k", "projection_weight", "light_luminance", "max_iterations",
+//                 "none"|"factor:k", "projection_weight", "projection_de2000",
+//                 "projection_rounds", "light_luminance", "max_iterations",
 //                 "miss_de2000", "black_y", "ridge", "split_blocks"}}
 // SPEC is a spectrum as in spectrum_spec.h. Target XYZ is relative to the white under that
 // light (Y = 1); sRGB and Lab targets use the sRGB (D65) white: "#ffffff" is XYZ of D65, Y = 1.
@@ -60,6 +61,8 @@ struct DesignOptions {
   DesignBounds bounds = DesignBounds::kPhysical;
   int projection_k = 0;  // 0: no projection-error term; else the factor:k model's subspace
   double projection_weight = 1.0;
+  double projection_de2000 = 0.5;  // stop refreshing the subspace once every signal is within
+  int projection_rounds = 8;       // at most this many refreshes
   double light_luminance = 1.0;  // Y of the white under every light (flat E = 1 has Y = 1)
   int max_iterations = 200;      // bilinear alternation rounds
   double miss_de2000 = 1.0;      // a colour or metamer cell further than this is a miss

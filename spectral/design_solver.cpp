@@ -20,20 +20,77 @@ Xyz relativeXyz(const CmfMatrix& cmf, const Eigen::VectorXd& light,
 
 namespace {
 
-// Orthonormal basis of the first k principal directions of every light × material signal;
-// CMFᵀ (I − Q Qᵀ) is what projection onto it loses in XYZ.
-Eigen::MatrixXd projectionLoss(const CmfMatrix& cmf, const DesignState& s, int k) {
+// The span of the factor:k model a scene trains on these spectra: the first k principal
+// directions of every light × material signal with the lights at equal luminance
+// (principalBasis; sharpening only changes the basis within the span, not the span).
+Eigen::MatrixXd modelSubspace(const CmfMatrix& cmf, const DesignState& s, int k) {
   const int n = static_cast<int>(cmf.rows());
   Eigen::MatrixXd moment = Eigen::MatrixXd::Zero(n, n);
-  for (const auto& l : s.lights)
+  for (const auto& l : s.lights) {
+    const double y = cmf.col(1).dot(l);
     for (const auto& r : s.materials) {
-      const Eigen::VectorXd signal = l.cwiseProduct(r);
+      const Eigen::VectorXd signal = l.cwiseProduct(r) / (y > 0 ? y : 1.0);
       moment.noalias() += signal * signal.transpose();
     }
+  }
   Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eig(moment);
-  const Eigen::MatrixXd q = eig.eigenvectors().rightCols(std::min(k, n));
-  return cmf.transpose() * (Eigen::MatrixXd::Identity(n, n) - q * q.transpose());
+  return eig.eigenvectors().rightCols(std::min(k, n));
 }
+
+// CIELAB's lightness slope dL*/dY relative to its value at Y = 1: ΔE of an XYZ loss grows as
+// a colour darkens (23× at black), so a metameric black needs its projection loss ~23× smaller
+// than a white does for the same ΔE.
+double labSlope(double y) { return std::pow(std::max(y, 216.0 / 24389.0), -2.0 / 3.0); }
+
+// ΔE2000 (lights × materials) between each signal's colour and that of its projection onto the
+// model subspace, against the light's white.
+Eigen::MatrixXd projectionDe2000(const CmfMatrix& cmf, const DesignState& s, int k) {
+  const Eigen::MatrixXd q = modelSubspace(cmf, s, k);
+  Eigen::MatrixXd de(static_cast<Eigen::Index>(s.lights.size()),
+                     static_cast<Eigen::Index>(s.materials.size()));
+  for (std::size_t j = 0; j < s.lights.size(); ++j)
+    for (std::size_t m = 0; m < s.materials.size(); ++m) {
+      Xyz white;
+      const Xyz full = relativeXyz(cmf, s.lights[j], s.materials[m], &white);
+      const Eigen::VectorXd signal = s.lights[j].cwiseProduct(s.materials[m]);
+      const double y = cmf.col(1).dot(s.lights[j]);
+      const Xyz lost = cmf.transpose() * (signal - q * (q.transpose() * signal)) / (y > 0 ? y : 1.0);
+      de(j, m) = deltaE2000(xyzToLab(full, white), xyzToLab(full - lost, white));
+    }
+  return de;
+}
+
+// Loss rows for the current subspace; each signal weighted by CIELAB's slope at its luminance
+// times its boost (grown for signals that stay beyond the target, a penalty method).
+void refreshProjectionTerm(const CmfMatrix& cmf, int k, const Eigen::MatrixXd& boost,
+                           DesignState* s) {
+  const int n = static_cast<int>(cmf.rows());
+  const Eigen::MatrixXd q = modelSubspace(cmf, *s, k);
+  s->projection_loss = cmf.transpose() * (Eigen::MatrixXd::Identity(n, n) - q * q.transpose());
+  s->projection_cell_weight = boost;
+  for (std::size_t j = 0; j < s->lights.size(); ++j)
+    for (std::size_t m = 0; m < s->materials.size(); ++m)
+      s->projection_cell_weight(j, m) *=
+          labSlope(relativeXyz(cmf, s->lights[j], s->materials[m]).y());
+}
+
+}  // namespace
+
+std::vector<ProjectionReport> projectionErrors(const std::vector<NamedSpectrum>& lights,
+                                               const std::vector<NamedSpectrum>& materials,
+                                               const Observer& observer, int k) {
+  DesignState s;
+  for (const auto& l : lights) s.lights.push_back(l.spectrum.values());
+  for (const auto& m : materials) s.materials.push_back(m.spectrum.values());
+  const Eigen::MatrixXd de = projectionDe2000(normalisedCmf(observer), s, k);
+  std::vector<ProjectionReport> out;
+  for (std::size_t j = 0; j < lights.size(); ++j)
+    for (std::size_t m = 0; m < materials.size(); ++m)
+      out.push_back({materials[m].name, lights[j].name, de(j, m)});
+  return out;
+}
+
+namespace {
 
 bool bilinear(const DesignPalette& p) {
   bool light = false, material = false;
@@ -69,12 +126,25 @@ DesignResult designPalette(const DesignPalette& palette, const Observer& observe
     }
   const bool physical = opt.bounds == DesignBounds::kPhysical;
   const int max_rounds = bilinear(palette) ? opt.max_iterations : 1;
-  // The projection subspace depends on the spectra being designed: refresh it a few times
-  // (each refresh changes the objective, so the alternation restarts its descent).
-  const int subspace_rounds = opt.projection_k > 0 ? 8 : 1;
+  // The projection subspace and the cells' CIELAB slopes depend on the spectra being designed:
+  // refresh them until every signal projects within the target (each refresh changes the
+  // objective, so the alternation restarts its descent).
+  const int subspace_rounds = opt.projection_k > 0 ? opt.projection_rounds : 1;
   bool first_solve = true;
+  Eigen::MatrixXd boost = Eigen::MatrixXd::Ones(static_cast<Eigen::Index>(palette.lights.size()),
+                                                 static_cast<Eigen::Index>(palette.materials.size()));
   for (int sub = 0; sub < subspace_rounds; ++sub) {
-    if (opt.projection_k > 0) state.projection_loss = projectionLoss(cmf, state, opt.projection_k);
+    if (opt.projection_k > 0) {
+      if (sub > 0) {
+        const Eigen::MatrixXd de = projectionDe2000(cmf, state, opt.projection_k);
+        if (de.maxCoeff() <= opt.projection_de2000) break;
+        // A signal k× beyond the target gets up to k× the weight (at most 4× a round).
+        boost = boost.cwiseProduct(
+            (de / std::max(opt.projection_de2000, 1e-3)).cwiseMax(1.0).cwiseMin(4.0));
+      }
+      refreshProjectionTerm(cmf, opt.projection_k, boost, &state);
+      ++result.projection_rounds;
+    }
     double previous = designObjective(palette, cmf, state);
     const double start = previous;
     result.history.push_back(previous);
@@ -126,6 +196,8 @@ DesignResult designPalette(const DesignPalette& palette, const Observer& observe
     result.lights.push_back({palette.lights[j].name, Spectrum(grid, state.lights[j])});
   for (std::size_t m = 0; m < palette.materials.size(); ++m)
     result.materials.push_back({palette.materials[m].name, Spectrum(grid, state.materials[m])});
+  if (opt.projection_k > 0)
+    result.projection = projectionErrors(result.lights, result.materials, observer, opt.projection_k);
 
   auto report = [&](int m, int j, CellKind kind, const Xyz& target, double weight) {
     CellReport c;

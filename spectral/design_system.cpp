@@ -136,7 +136,8 @@ DesignSystem buildDesignSystem(const DesignPalette& palette, const CmfMatrix& cm
     for (std::size_t j = 0; j < palette.lights.size(); ++j)
       for (std::size_t m = 0; m < palette.materials.size(); ++m)
         addColourRows(state.projection_loss, static_cast<int>(j), static_cast<int>(m),
-                      opt.projection_weight, Eigen::Vector3d::Zero(), -1);
+                      opt.projection_weight * state.projection_cell_weight(j, m),
+                      Eigen::Vector3d::Zero(), -1);
 
   // Per free spectrum: smoothness, ridge, and (lights) luminance. Spectra outside the block
   // contribute constant rows so that the objective is the same whichever block is solved.

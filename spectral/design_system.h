@@ -27,6 +27,9 @@ struct DesignState {
   // 3×n: XYZ of what the projection onto the model subspace loses, CMFᵀ (I − Q Qᵀ); empty
   // when the palette has no projection term.
   Eigen::MatrixXd projection_loss;
+  // lights × materials: each signal's projection rows are scaled by this (the CIELAB slope at
+  // the signal's current luminance, so that equal weighted XYZ losses are equal ΔE).
+  Eigen::MatrixXd projection_cell_weight;
 };
 
 enum class DesignBlock { kMaterials, kLights };

@@ -166,11 +166,16 @@ TEST(Design, ProjectionTermLowersTheScenesFactorModelError) {
   p.options.projection_weight = 30.0;
   const DesignResult r = designPalette(p, test::observer());
   const double with = worstProjectionError(r);
-  // The issue asks for ≤ 0.5 everywhere; this palette holds four *given* signals (the fixed
-  // block under four given lights) that the design cannot move, and the term only gets the
-  // worst cell down, not to 0.5 (see the report). Assert what holds: a clear reduction.
+  // This palette holds four *given* signals (the fixed block under four given lights) that the
+  // design cannot move, so the term only lowers the worst cell; the shipped engine palette,
+  // designed with it, gets every cell within 0.5 (DesignedScenes.EnginePaletteProjects…).
   EXPECT_LT(with, 0.8 * without) << "with " << with << ", without " << without;
   EXPECT_LE(cell(r, "smoke", "F11").achieved.y(), 0.01);
+  // The report covers every light × material and agrees with the trained model's own B·P.
+  ASSERT_EQ(r.projection.size(), p.lights.size() * p.materials.size());
+  double reported = 0;
+  for (const auto& c : r.projection) reported = std::max(reported, c.de2000);
+  EXPECT_NEAR(reported, with, 1e-6 * with);
 }
 
 TEST(Design, InfeasiblePaletteReportsItsMisses) {
