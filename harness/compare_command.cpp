@@ -175,6 +175,7 @@ CompareSummary runComparison(const CompareOptions& o) {
                               {"model", run.model_name},
                               {"model_asked", run.spec.model},
                               {"model_description", run.model_description},
+                              {"model_choice", run.model_choice},
                               {"k", run.k},
                               {"options", run.spec.options},
                               {"label", run.spec.label()},

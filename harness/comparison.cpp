@@ -88,7 +88,8 @@ ComparisonSession::Rendered ComparisonSession::render(const std::string& rendere
                         merged};
   const auto t_render = std::chrono::steady_clock::now();
   LightIndependentImage image = renderer->render(request, nullptr);
-  return {std::move(chosen.model), chosen.description, std::move(image), classify_ms,
+  nlohmann::json choice = chosen.record();
+  return {std::move(chosen.model), chosen.description, std::move(choice), std::move(image), classify_ms,
           msSince(t_render)};
 }
 
@@ -109,6 +110,7 @@ RunResult ComparisonSession::run(const RunSpec& spec) {
   result.spec = spec;
   result.model_name = r.model->name();
   result.model_description = r.description;
+  result.model_choice = r.choice;
   result.k = r.model->channels();
   result.classify_ms = r.classify_ms;
   result.render_ms = r.render_ms;

@@ -39,6 +39,7 @@ struct LightResult {
 struct RunResult {
   RunSpec spec;
   std::string model_name, model_description;
+  nlohmann::json model_choice;  // SceneModel::record(): auto's choice and the error behind it
   int k = 0;
   double classify_ms = 0.0, render_ms = 0.0, relight_ms = 0.0;  // relight: per light
   std::vector<LightResult> lights;
@@ -67,6 +68,7 @@ class ComparisonSession {
   struct Rendered {
     std::unique_ptr<ColourModel> model;
     std::string description;
+    nlohmann::json choice;
     LightIndependentImage image;
     double classify_ms, render_ms;
   };

@@ -141,6 +141,7 @@ int runRender(const RenderOptions& o) {
       {"renderer", renderer->name()},
       {"model", model.name()},
       {"model_description", chosen.description},
+      {"model_choice", chosen.record()},
       {"k", model.channels()},
       {"t_channels", image.transmittanceChannels()},
       {"width", image.width()},

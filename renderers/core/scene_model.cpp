@@ -42,15 +42,26 @@ double worstMean(const ColourModel& model, const Observer& observer, const Evalu
 
 }  // namespace
 
+nlohmann::json SceneModel::record() const {
+  nlohmann::json j = {{"asked", asked},
+                      {"model", model->name()},
+                      {"k", model->channels()},
+                      {"description", description}};
+  if (std::isfinite(palette_de2000)) j["palette_de2000"] = palette_de2000;
+  if (std::isfinite(target)) j["target"] = target;
+  return j;
+}
+
 SceneModel makeSceneModel(const std::string& name, const Scene& scene, const Observer& observer) {
   if (name != "auto") {
     const ModelName parsed = parseModelName(name);
     switch (parsed.kind) {
-      case ModelKind::kRgb: return {makeRgbModel(observer), "rgb"};
+      case ModelKind::kRgb: return {makeRgbModel(observer), "rgb", name};
       case ModelKind::kSpectral:
         return {makeSpectralModel(observer, parsed.k),
                 fmt::format("spectral:{} ({} bands of the {}-sample grid)", parsed.k, parsed.k,
-                            observer.grid().count)};
+                            observer.grid().count),
+                name};
       case ModelKind::kLinear:
         throw Error(fmt::format("{}: linear:k has no componentwise product; the renderers take "
                                 "rgb, factor:k, spectral:n or auto", scene.file));
@@ -68,7 +79,7 @@ SceneModel makeSceneModel(const std::string& name, const Scene& scene, const Obs
     const int k = parseModelName(name).k;
     auto model = trainFactorModel(observer, training, k, FactorVariant::kRefined);
     const double error = worstMean(*model, observer, palette);
-    return {std::move(model), describe(k, error)};
+    return {std::move(model), describe(k, error), name, error};
   }
   std::unique_ptr<ColourModel> best;
   double best_error = INFINITY;
@@ -77,12 +88,16 @@ SceneModel makeSceneModel(const std::string& name, const Scene& scene, const Obs
     const double error = worstMean(*model, observer, palette);
     if (error < best_error) best_error = error, best = std::move(model);
     if (best_error <= scene.auto_target)
-      return {std::move(best), "auto: " + describe(k, best_error) +
-                                   fmt::format(" — the smallest k within {}", scene.auto_target)};
+      return {std::move(best),
+              "auto: " + describe(k, best_error) +
+                  fmt::format(" — the smallest k within {}", scene.auto_target),
+              name, best_error, scene.auto_target};
   }
+  const int k = best->channels();
   return {std::move(best),
-          "auto: " + describe(best->channels(), best_error) +
-              fmt::format(" — no k ≤ 10 reached {}; the most accurate one", scene.auto_target)};
+          "auto: " + describe(k, best_error) +
+              fmt::format(" — no k ≤ 10 reached {}; the most accurate one", scene.auto_target),
+          name, best_error, scene.auto_target};
 }
 
 }  // namespace svr

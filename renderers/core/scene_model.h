@@ -6,7 +6,9 @@
 //   auto              the smallest factor k (3..10) whose mean ΔE2000 on that palette, single
 //                     and after 256 absorption steps, stays within the scene's model_target.
 
+#include <cmath>
 #include <memory>
+#include <nlohmann/json.hpp>
 #include <string>
 
 #include "renderers/core/scene.h"
@@ -18,6 +20,15 @@ namespace svr {
 struct SceneModel {
   std::unique_ptr<ColourModel> model;
   std::string description;  // how it was chosen, for render.json and the terminal
+  std::string asked;        // the name it was made from ("auto", "factor:6", …)
+  // Trained factor models: the error on the scene palette that justified the choice (worst of
+  // the single-product and 256-step mean ΔE2000); auto also has its target. NaN otherwise.
+  double palette_de2000 = NAN;
+  double target = NAN;
+
+  // {"asked", "model", "k", "description", "palette_de2000"?, "target"?} for render.json and
+  // report.json.
+  nlohmann::json record() const;
 };
 
 SceneModel makeSceneModel(const std::string& name, const Scene& scene, const Observer& observer);
