@@ -124,6 +124,12 @@ def section(folder, report):
              f"<b>{'pass' if report['pass'] else 'FAIL'}</b></p>"]
     for miss in report.get("exceedances", []):
         parts.append(f"<p class=miss>{e(miss)}</p>")
+    # How each colour model was made (auto: which k and the palette error that justified it).
+    described = {}
+    for run in report["runs"]:
+        described.setdefault(run.get("model_asked", run["model"]), run.get("model_description", ""))
+    parts.append("<ul class=models>" + "".join(
+        f"<li><b>{e(asked)}</b>: {e(text)}</li>" for asked, text in described.items()) + "</ul>")
     parts.append(f"<img src='{embed(folder, 'speed_accuracy.png')}'>")
     parts.append("<table><tr><th>run</th><th>model</th><th>ms/frame</th><th>relight fps</th>"
                  "<th>light</th><th>mean ΔE</th><th>p95</th><th>max</th><th>vs raycast</th>"
@@ -143,14 +149,12 @@ def section(folder, report):
         parts.append(f"<h3>{e(light)}</h3><div class=row>")
         parts.append(f"<figure><img src='{embed(folder, 'images/reference/' + slug(light) + '.png')}'>"
                      f"<figcaption>reference spectral:81</figcaption></figure>")
+        # Each run's relit image with its ΔE2000 map beneath it, so the two read together.
         for run in report["runs"]:
             l = run["lights"][i]
             parts.append(f"<figure><img src='{embed(folder, l['image'])}'>"
+                         f"<img class=map src='{embed(folder, l['error_png'])}'>"
                          f"<figcaption>{e(run['label'])}</figcaption></figure>")
-        parts.append("</div><div class=row>")
-        for run in report["runs"]:
-            l = run["lights"][i]
-            parts.append(f"<figure><img class=map src='{embed(folder, l['error_png'])}'></figure>")
         parts.append("</div>")
     return "\n".join(parts)
 
@@ -158,8 +162,8 @@ def section(folder, report):
 PAGE = """<!doctype html><html><head><meta charset=utf-8><title>svr report</title><style>
 body{{font-family:sans-serif;margin:1em;background:#fafafa}} table{{border-collapse:collapse;font-size:12px}}
 td,th{{border:1px solid #ccc;padding:2px 6px;text-align:right}} td:first-child{{text-align:left}}
-.row{{display:flex;flex-wrap:wrap;gap:6px}} figure{{margin:0}} figure img{{width:192px}}
-img.map{{width:240px}} figcaption{{font-size:11px;max-width:192px}} .miss{{color:#b00}} .ok{{color:#070}}
+.row{{display:flex;flex-wrap:wrap;gap:6px}} figure{{margin:0}} figure img{{width:192px;display:block}}
+img.map{{width:192px}} ul.models{{font-size:12px}} figcaption{{font-size:11px;max-width:192px}} .miss{{color:#b00}} .ok{{color:#070}}
 </style></head><body><h1>svr comparison report</h1>{body}</body></html>"""
 
 
