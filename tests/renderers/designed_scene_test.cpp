@@ -81,7 +81,7 @@ TEST(DesignedScenes, UnderEachLightOnlyItsMaterialShows) {
   }
 }
 
-// The engine designs its palette when it loads (2 s); its n-gon mixes resolve to weights.
+// The engine designs its palette when it loads (3 s, with its projection rounds); its n-gon mixes resolve to weights.
 TEST(DesignedScenes, EngineDesignsItsPaletteOnLoadAndMixesByHandlePosition) {
   const Scene scene = loadShipped("engine_designed");
   ASSERT_EQ(scene.lights.size(), 3u);
