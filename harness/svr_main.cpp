@@ -19,6 +19,17 @@
 #include "spectral/data_dir.h"
 #include "spectral/error.h"
 
+namespace {
+
+// An image size given on the command line: the scene file's image.width/height range, checked
+// before any loading or rendering.
+void checkImageSize(const std::string& command, const std::string& flag, int value) {
+  if (value < 1 || value > 16384)
+    throw svr::Error(fmt::format("{}: {} {} is outside 1..16384", command, flag, value));
+}
+
+}  // namespace
+
 int main(int argc, char** argv) {
   CLI::App app{"svr — spectral volume rendering with post-illumination (Bergner et al. 2002)"};
   app.require_subcommand(1);
@@ -135,12 +146,8 @@ int main(int argc, char** argv) {
     if (!splat_mode.empty()) render.options.push_back("splat.mode=" + splat_mode);
     if (!render_budget.empty())
       render.memory_budget = svr::parseByteSize(render_budget, "--memory-budget");
-    if ((render.width && *render.width < 1) || (render.height && *render.height < 1))
-      throw svr::Error("render: --width and --height must be ≥ 1");
-    // The scene file's image.width/height range, checked before any loading or rendering.
-    for (const auto& [flag, size] : {std::pair{"--width", render.width}, {"--height", render.height}})
-      if (size && *size > 16384)
-        throw svr::Error(fmt::format("render: {} {} is outside 1..16384", flag, *size));
+    if (render.width) checkImageSize("render", "--width", *render.width);
+    if (render.height) checkImageSize("render", "--height", *render.height);
     svr::installInterruptHandler();
     svr::runRender(render);
   });
@@ -180,11 +187,15 @@ int main(int argc, char** argv) {
   compare_command->add_option("--variant", compare.variants,
                               "extra run with a backend option, BACKEND.KEY=VALUE (repeatable)");
   compare_command->add_option("--out", compare.out_dir, "report folder")->required();
-  compare_command->add_option("--width", compare.width, "image width (default: the scene's)");
-  compare_command->add_option("--height", compare.height, "image height (default: the scene's)");
+  auto* compare_width =
+      compare_command->add_option("--width", compare.width, "image width (default: the scene's)");
+  auto* compare_height =
+      compare_command->add_option("--height", compare.height, "image height (default: the scene's)");
   compare_command->add_flag("-q,--quiet", compare.quiet, "no progress bar or table");
   compare_command->callback([&] {
     compare.data_dir = data_dir;
+    if (compare_width->count()) checkImageSize("compare", "--width", compare.width);
+    if (compare_height->count()) checkImageSize("compare", "--height", compare.height);
     compare_status = svr::runCompare(compare);
   });
 
@@ -199,12 +210,22 @@ int main(int argc, char** argv) {
   sweep_command->add_option("--renderers", sweep.renderers, "backends (default: all)")
       ->delimiter(',');
   sweep_command->add_option("--model", sweep.model, "colour model")->capture_default_str();
-  sweep_command->add_option("--size", sweep.width, "image width and height")->capture_default_str();
+  int sweep_size = 0;
+  auto* sweep_size_option =
+      sweep_command->add_option("--size", sweep_size, "image width and height (default 96)");
+  auto* sweep_width = sweep_command->add_option("--width", sweep.width, "image width (default 96)");
+  auto* sweep_height = sweep_command->add_option("--height", sweep.height, "image height (default 96)");
+  sweep_size_option->excludes(sweep_width)->excludes(sweep_height);
   sweep_command->add_option("--out", sweep.out_dir, "output folder")->required();
   sweep_command->add_flag("-q,--quiet", sweep.quiet, "no progress bar");
   sweep_command->callback([&] {
     sweep.data_dir = data_dir;
-    sweep.height = sweep.width;
+    if (sweep_size_option->count()) {
+      checkImageSize("sweep", "--size", sweep_size);
+      sweep.width = sweep.height = sweep_size;
+    }
+    if (sweep_width->count()) checkImageSize("sweep", "--width", sweep.width);
+    if (sweep_height->count()) checkImageSize("sweep", "--height", sweep.height);
     svr::runSweep(sweep);
   });
 
