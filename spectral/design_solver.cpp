@@ -22,7 +22,9 @@ namespace {
 
 // The span of the factor:k model a scene trains on these spectra: the first k principal
 // directions of every light × material signal with the lights at equal luminance
-// (principalBasis; sharpening only changes the basis within the span, not the span).
+// (principalBasis's span; sharpening only changes the basis within the span, not the span).
+// Not principalBasis itself: its different summation order moves the design to another local
+// optimum (see the boost note below).
 Eigen::MatrixXd modelSubspace(const CmfMatrix& cmf, const DesignState& s, int k) {
   const int n = static_cast<int>(cmf.rows());
   Eigen::MatrixXd moment = Eigen::MatrixXd::Zero(n, n);
@@ -43,9 +45,9 @@ Eigen::MatrixXd modelSubspace(const CmfMatrix& cmf, const DesignState& s, int k)
 double labSlope(double y) { return std::pow(std::max(y, 216.0 / 24389.0), -2.0 / 3.0); }
 
 // ΔE2000 (lights × materials) between each signal's colour and that of its projection onto the
-// model subspace, against the light's white.
-Eigen::MatrixXd projectionDe2000(const CmfMatrix& cmf, const DesignState& s, int k) {
-  const Eigen::MatrixXd q = modelSubspace(cmf, s, k);
+// model subspace q (orthonormal columns), against the light's white.
+Eigen::MatrixXd projectionDe2000(const CmfMatrix& cmf, const DesignState& s,
+                                 const Eigen::MatrixXd& q) {
   Eigen::MatrixXd de(static_cast<Eigen::Index>(s.lights.size()),
                      static_cast<Eigen::Index>(s.materials.size()));
   for (std::size_t j = 0; j < s.lights.size(); ++j)
@@ -60,12 +62,11 @@ Eigen::MatrixXd projectionDe2000(const CmfMatrix& cmf, const DesignState& s, int
   return de;
 }
 
-// Loss rows for the current subspace; each signal weighted by CIELAB's slope at its luminance
+// Loss rows for the subspace q; each signal weighted by CIELAB's slope at its luminance
 // times its boost (grown for signals that stay beyond the target, a penalty method).
-void refreshProjectionTerm(const CmfMatrix& cmf, int k, const Eigen::MatrixXd& boost,
-                           DesignState* s) {
+void refreshProjectionTerm(const CmfMatrix& cmf, const Eigen::MatrixXd& q,
+                           const Eigen::MatrixXd& boost, DesignState* s) {
   const int n = static_cast<int>(cmf.rows());
-  const Eigen::MatrixXd q = modelSubspace(cmf, *s, k);
   s->projection_loss = cmf.transpose() * (Eigen::MatrixXd::Identity(n, n) - q * q.transpose());
   s->projection_cell_weight = boost;
   for (std::size_t j = 0; j < s->lights.size(); ++j)
@@ -82,7 +83,8 @@ std::vector<ProjectionReport> projectionErrors(const std::vector<NamedSpectrum>&
   DesignState s;
   for (const auto& l : lights) s.lights.push_back(l.spectrum.values());
   for (const auto& m : materials) s.materials.push_back(m.spectrum.values());
-  const Eigen::MatrixXd de = projectionDe2000(normalisedCmf(observer), s, k);
+  const CmfMatrix cmf = normalisedCmf(observer);
+  const Eigen::MatrixXd de = projectionDe2000(cmf, s, modelSubspace(cmf, s, k));
   std::vector<ProjectionReport> out;
   for (std::size_t j = 0; j < lights.size(); ++j)
     for (std::size_t m = 0; m < materials.size(); ++m)
@@ -109,6 +111,7 @@ constexpr double kStartDecrease = 1e-8;
 
 DesignResult designPalette(const DesignPalette& palette, const Observer& observer) {
   const CmfMatrix cmf = normalisedCmf(observer);
+  const WavelengthGrid grid = observer.grid();
   const DesignOptions& opt = palette.options;
   DesignState state = initialState(palette, cmf);
   DesignResult result;
@@ -135,14 +138,18 @@ DesignResult designPalette(const DesignPalette& palette, const Observer& observe
                                                  static_cast<Eigen::Index>(palette.materials.size()));
   for (int sub = 0; sub < subspace_rounds; ++sub) {
     if (opt.projection_k > 0) {
+      const Eigen::MatrixXd q = modelSubspace(cmf, state, opt.projection_k);
       if (sub > 0) {
-        const Eigen::MatrixXd de = projectionDe2000(cmf, state, opt.projection_k);
+        const Eigen::MatrixXd de = projectionDe2000(cmf, state, q);
         if (de.maxCoeff() <= opt.projection_de2000) break;
-        // A signal k× beyond the target gets up to k× the weight (at most 4× a round).
+        // A signal k× beyond the target gets up to k× the weight (at most 4× a round). The
+        // boosts are unbounded, and the outcome is sensitive: summing the subspace's moment
+        // in another order (principalBasis) sent the engine to an objective of 1e14 (issue 8's
+        // note).
         boost = boost.cwiseProduct(
             (de / std::max(opt.projection_de2000, 1e-3)).cwiseMax(1.0).cwiseMin(4.0));
       }
-      refreshProjectionTerm(cmf, opt.projection_k, boost, &state);
+      refreshProjectionTerm(cmf, q, boost, &state);
       ++result.projection_rounds;
     }
     double previous = designObjective(palette, cmf, state);
@@ -191,7 +198,6 @@ DesignResult designPalette(const DesignPalette& palette, const Observer& observe
     const double y = cmf.col(1).dot(state.lights[j]);
     if (palette.lights[j].free && y > 0) state.lights[j] *= opt.light_luminance / y;
   }
-  const WavelengthGrid grid = observer.grid();
   for (std::size_t j = 0; j < palette.lights.size(); ++j)
     result.lights.push_back({palette.lights[j].name, Spectrum(grid, state.lights[j])});
   for (std::size_t m = 0; m < palette.materials.size(); ++m)
