@@ -61,7 +61,7 @@ ComparisonSession::ComparisonSession(Scene scene, const std::string& data_dir)
   // The reference: full-spectral raycast, fine step, every sample composited.
   Rendered ref = render("raycast", fmt::format("spectral:{}", observer_.grid().count),
                         nlohmann::json::object(), std::min(scene_.step_voxels, 0.25), 0.0);
-  reference_model_ = std::move(ref.model);
+  reference_model_ = std::move(ref.chosen.model);
   reference_ = std::move(ref.image);
   reference_ms_ = ref.render_ms;
 }
@@ -88,9 +88,7 @@ ComparisonSession::Rendered ComparisonSession::render(const std::string& rendere
                         merged};
   const auto t_render = std::chrono::steady_clock::now();
   LightIndependentImage image = renderer->render(request, nullptr);
-  nlohmann::json choice = chosen.record();
-  return {std::move(chosen.model), chosen.description, std::move(choice), std::move(image), classify_ms,
-          msSince(t_render)};
+  return {std::move(chosen), std::move(image), classify_ms, msSince(t_render)};
 }
 
 RunResult ComparisonSession::run(const RunSpec& spec) {
@@ -108,15 +106,16 @@ RunResult ComparisonSession::run(const RunSpec& spec) {
   }
   RunResult result;
   result.spec = spec;
-  result.model_name = r.model->name();
-  result.model_description = r.description;
-  result.model_choice = r.choice;
-  result.k = r.model->channels();
+  const ColourModel& model = *r.chosen.model;
+  result.model_name = model.name();
+  result.model_description = r.chosen.description;
+  result.model_choice = r.chosen.record();
+  result.k = model.channels();
   result.classify_ms = r.classify_ms;
   result.render_ms = r.render_ms;
 
-  PostIlluminator post(*r.model);
-  if (scene_.background) post.setBackground(r.model->project(*scene_.background));
+  PostIlluminator post(model);
+  if (scene_.background) post.setBackground(model.project(*scene_.background));
   const auto ref_light_t = [&](const Spectrum& l) {
     return luminanceTransmittance(reference_, *reference_model_, reference_model_->project(l));
   };
@@ -125,7 +124,7 @@ RunResult ComparisonSession::run(const RunSpec& spec) {
     LightResult lr;
     lr.light = ill.name;
     const Xyz white = observer_.xyz(ill.spectrum);
-    const Eigen::VectorXd coeffs = r.model->project(ill.spectrum);
+    const Eigen::VectorXd coeffs = model.project(ill.spectrum);
     lr.relit.resize(3 * r.image.pixels());
     // Best of a few: a relight is short enough that one sample mostly measures thread wake-up.
     double best = INFINITY;
@@ -137,14 +136,14 @@ RunResult ComparisonSession::run(const RunSpec& spec) {
     }
     relight_total += best;
     const ImageDifference vs_ref =
-        compareRelit(r.image, *r.model, reference_, *reference_model_, ill.spectrum, white);
+        compareRelit(r.image, model, reference_, *reference_model_, ill.spectrum, white);
     lr.vs_reference = vs_ref.stats;
     lr.error_map = vs_ref.map;
     if (raycast)
       lr.vs_raycast =
-          compareRelit(r.image, *r.model, raycast->image, *raycast->model, ill.spectrum, white)
+          compareRelit(r.image, model, raycast->image, *raycast->chosen.model, ill.spectrum, white)
               .stats;
-    const auto t_run = luminanceTransmittance(r.image, *r.model, coeffs);
+    const auto t_run = luminanceTransmittance(r.image, model, coeffs);
     const auto t_ref = ref_light_t(ill.spectrum);
     double sum = 0.0;
     std::size_t n = 0;

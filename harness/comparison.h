@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "renderers/core/scene.h"
+#include "renderers/core/scene_model.h"
 #include "spectral/colorimetry.h"
 #include "spectral/colour_model.h"
 #include "spectral/light_independent_image.h"
@@ -66,9 +67,7 @@ class ComparisonSession {
 
  private:
   struct Rendered {
-    std::unique_ptr<ColourModel> model;
-    std::string description;
-    nlohmann::json choice;
+    SceneModel chosen;
     LightIndependentImage image;
     double classify_ms, render_ms;
   };
