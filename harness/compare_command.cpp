@@ -1,5 +1,7 @@
 #include "harness/compare_command.h"
 
+#include <CLI/CLI.hpp>
+#include <memory>
 #include <fmt/format.h>
 
 #include <cstdio>
@@ -7,6 +9,7 @@
 #include <filesystem>
 #include <fstream>
 
+#include "harness/command.h"
 #include "harness/image_files.h"
 #include "harness/progress.h"
 #include "renderers/registry.h"
@@ -60,6 +63,99 @@ void renderReportCharts(const std::string& out_dir) {
                             "(./setup.sh)?", out_dir, command));
 }
 
+namespace {
+
+// Every backend × model, and every --variant of a backend beside its plain run.
+std::vector<RunSpec> runSpecs(const CompareOptions& o, const std::vector<std::string>& renderers,
+                              const std::vector<std::string>& models) {
+  std::vector<OptionAssignment> variants;
+  for (const auto& v : o.variants) {
+    nlohmann::json checked = nlohmann::json::object();
+    applyOptionAssignment(checked, v, "--variant");  // unknown backends or keys fail here
+    variants.push_back(parseOptionAssignment(v, "--variant"));
+  }
+  std::vector<RunSpec> specs;
+  for (const auto& r : renderers)
+    for (const auto& m : models) {
+      specs.push_back({r, m, nlohmann::json::object()});
+      for (const auto& v : variants) {
+        if (v.backend != r) continue;
+        nlohmann::json options;
+        options[r][v.key] = v.value;
+        specs.push_back({r, m, options});
+      }
+    }
+  return specs;
+}
+
+void writeReferenceImages(const ComparisonSession& session, const std::string& out_dir) {
+  const Scene& scene = session.scene();
+  fs::create_directories(fs::path(out_dir) / "images" / "reference");
+  PostIlluminator post(session.referenceModel());
+  if (scene.background) post.setBackground(session.referenceModel().project(*scene.background));
+  for (const auto& ill : session.illuminations()) {
+    std::vector<std::uint8_t> rgb(3 * session.reference().pixels());
+    post.setLight(session.referenceModel().project(ill.spectrum));
+    post.relightSrgb8(session.reference(), rgb);
+    writeSrgbPng(rgb, scene.width, scene.height,
+                 (fs::path(out_dir) / "images" / "reference" / (slug(ill.name) + ".png")).string());
+  }
+}
+
+// One run's entry of report.json, writing its relit images and error maps as it goes.
+nlohmann::json runReport(const RunResult& run, const Scene& scene,
+                         const std::vector<Exceedance>& misses, const std::string& out_dir) {
+  const std::string run_slug = slug(run.spec.label());
+  fs::create_directories(fs::path(out_dir) / "images" / run_slug);
+  fs::create_directories(fs::path(out_dir) / "maps" / run_slug);
+  const auto tolerances = tolerancesFor(run.spec.renderer, scene.tolerances);
+  double de_tolerance = 0.0;
+  for (const auto& t : tolerances)
+    if (t.metric == "de_mean") de_tolerance = t.limit;
+  nlohmann::json jl = nlohmann::json::array();
+  for (const auto& l : run.lights) {
+    const std::string light_slug = slug(l.light);
+    const std::string image = fmt::format("images/{}/{}.png", run_slug, light_slug);
+    const std::string map = fmt::format("maps/{}/{}.pfm", run_slug, light_slug);
+    writeSrgbPng(l.relit, scene.width, scene.height, (fs::path(out_dir) / image).string());
+    writeFloatMap((fs::path(out_dir) / map).string(), scene.width, scene.height, l.error_map);
+    const bool pass = std::none_of(misses.begin(), misses.end(), [&](const Exceedance& m) {
+      return m.run == run.spec.label() && m.light == l.light;
+    });
+    jl.push_back({{"light", l.light},
+                  {"de_mean", finiteOrNull(l.vs_reference.mean)},
+                  {"de_p95", finiteOrNull(l.vs_reference.p95)},
+                  {"de_max", finiteOrNull(l.vs_reference.max)},
+                  {"de_vs_raycast_mean", finiteOrNull(l.vs_raycast ? l.vs_raycast->mean : 0.0)},
+                  {"de_vs_raycast_p95", finiteOrNull(l.vs_raycast ? l.vs_raycast->p95 : 0.0)},
+                  {"transmittance_error", finiteOrNull(l.transmittance_error)},
+                  {"finite", l.vs_reference.finite},
+                  {"tolerance", de_tolerance},
+                  {"pass", pass},
+                  {"image", image},
+                  {"error_map", map}});
+  }
+  nlohmann::json tol = nlohmann::json::object();
+  for (const auto& t : tolerances) tol[t.metric] = t.limit;
+  return {{"renderer", run.spec.renderer},
+          {"model", run.model_name},
+          {"model_asked", run.spec.model},
+          {"model_description", run.model_description},
+          {"model_choice", run.model_choice},
+          {"k", run.k},
+          {"options", run.spec.options},
+          {"label", run.spec.label()},
+          {"classify_ms", run.classify_ms},
+          {"render_ms", run.render_ms},
+          {"relight_ms", run.relight_ms},
+          {"render_fps", 1000.0 / std::max(run.render_ms, 1e-9)},
+          {"relight_fps", 1000.0 / std::max(run.relight_ms, 1e-9)},
+          {"tolerances", tol},
+          {"lights", jl}};
+}
+
+}  // namespace
+
 CompareSummary runComparison(const CompareOptions& o) {
   const auto library = SpectrumLibrary::load(o.data_dir, WavelengthGrid::standard());
   Scene scene = loadScene(o.scene, library);
@@ -68,29 +164,11 @@ CompareSummary runComparison(const CompareOptions& o) {
   const std::vector<std::string> renderers = o.renderers.empty() ? rendererNames() : o.renderers;
   for (const auto& r : renderers) makeRenderer(r);  // unknown names fail before any work
   checkRendererOptions(scene.renderer_options, o.scene + ": render.options");
-  for (const auto& v : o.variants)  // a variant for an unknown backend would never run
-    checkRendererOptions({{v.substr(0, v.find('.')), nlohmann::json::object()}},
-                         fmt::format("--variant '{}'", v));
   const std::vector<std::string> models =
       o.models.empty() ? std::vector<std::string>{"rgb", "factor:3", "factor:4", "factor:6",
                                                   "factor:8", "spectral:31"}
                        : o.models;
-  std::vector<RunSpec> specs;
-  for (const auto& r : renderers)
-    for (const auto& m : models) {
-      specs.push_back({r, m, nlohmann::json::object()});
-      for (const auto& v : o.variants) {
-        const auto dot = v.find('.'), eq = v.find('=');
-        if (dot == std::string::npos || eq == std::string::npos || eq < dot)
-          throw Error(fmt::format("--variant '{}': expected BACKEND.KEY=VALUE", v));
-        if (v.substr(0, dot) != r) continue;
-        nlohmann::json value = nlohmann::json::parse(v.substr(eq + 1), nullptr, false);
-        if (value.is_discarded()) value = v.substr(eq + 1);
-        nlohmann::json options;
-        options[r][v.substr(dot + 1, eq - dot - 1)] = value;
-        specs.push_back({r, m, options});
-      }
-    }
+  const std::vector<RunSpec> specs = runSpecs(o, renderers, models);
 
   std::error_code ec;
   fs::create_directories(o.out_dir, ec);
@@ -103,101 +181,44 @@ CompareSummary runComparison(const CompareOptions& o) {
   summary.scene = o.scene;
   summary.reference_ms = session.referenceMs();
   for (const auto& spec : specs) {
-    summary.runs.push_back(session.run(spec));
+    if (const auto why = session.unsupported(spec.renderer)) {
+      const std::string note = fmt::format("{} skipped: {}", spec.label(), *why);
+      if (std::find(summary.skipped.begin(), summary.skipped.end(), note) == summary.skipped.end())
+        summary.skipped.push_back(note);
+    } else {
+      summary.runs.push_back(session.run(spec));
+    }
     progress.advance(spec.label());
   }
-
-  // Images: the reference relit, then every run's relit image and error map.
-  const int w = scene.width, h = scene.height;
-  fs::create_directories(fs::path(o.out_dir) / "images" / "reference");
-  {
-    PostIlluminator post(session.referenceModel());
-    if (scene.background) post.setBackground(session.referenceModel().project(*scene.background));
-    for (const auto& ill : session.illuminations()) {
-      std::vector<std::uint8_t> rgb(3 * session.reference().pixels());
-      post.setLight(session.referenceModel().project(ill.spectrum));
-      post.relightSrgb8(session.reference(), rgb);
-      writeSrgbPng(rgb, w, h,
-                   (fs::path(o.out_dir) / "images" / "reference" / (slug(ill.name) + ".png")).string());
-    }
+  for (const auto& run : summary.runs) {
+    const auto misses = checkTolerances(run, scene.tolerances);
+    summary.exceedances.insert(summary.exceedances.end(), misses.begin(), misses.end());
   }
+
+  writeReferenceImages(session, o.out_dir);
   nlohmann::json report;
   report["scene"] = o.scene;
-  report["width"] = w;
-  report["height"] = h;
-  report["reference"] = {{"renderer", "raycast"},
-                         {"model", fmt::format("spectral:{}", WavelengthGrid::standard().count)},
-                         {"render_ms", session.referenceMs()},
-                         {"step_voxels", std::min(scene.step_voxels, 0.25)},
-                         {"early_termination", 0}};
+  report["width"] = scene.width;
+  report["height"] = scene.height;
+  report["reference"] = Reference().toJson(scene, session.referenceMs());
   nlohmann::json lights = nlohmann::json::array();
   for (const auto& ill : session.illuminations()) lights.push_back(ill.name);
   report["lights"] = lights;
   report["runs"] = nlohmann::json::array();
-  bool all_pass = true;
-  for (const auto& run : summary.runs) {
-    const auto misses = checkTolerances(run, scene.tolerances);
-    summary.exceedances.insert(summary.exceedances.end(), misses.begin(), misses.end());
-    const std::string run_slug = slug(run.spec.label());
-    fs::create_directories(fs::path(o.out_dir) / "images" / run_slug);
-    fs::create_directories(fs::path(o.out_dir) / "maps" / run_slug);
-    const auto tolerances = tolerancesFor(run.spec.renderer, scene.tolerances);
-    double de_tolerance = 0.0;
-    for (const auto& t : tolerances)
-      if (t.metric == "de_mean") de_tolerance = t.limit;
-    nlohmann::json jl = nlohmann::json::array();
-    for (const auto& l : run.lights) {
-      const std::string light_slug = slug(l.light);
-      const std::string image = fmt::format("images/{}/{}.png", run_slug, light_slug);
-      const std::string map = fmt::format("maps/{}/{}.pfm", run_slug, light_slug);
-      writeSrgbPng(l.relit, w, h, (fs::path(o.out_dir) / image).string());
-      writeFloatMap((fs::path(o.out_dir) / map).string(), w, h, l.error_map);
-      bool pass = true;
-      for (const auto& m : misses)
-        if (m.light == l.light) pass = false;
-      all_pass = all_pass && pass;
-      jl.push_back({{"light", l.light},
-                    {"de_mean", finiteOrNull(l.vs_reference.mean)},
-                    {"de_p95", finiteOrNull(l.vs_reference.p95)},
-                    {"de_max", finiteOrNull(l.vs_reference.max)},
-                    {"de_vs_raycast_mean", finiteOrNull(l.vs_raycast ? l.vs_raycast->mean : 0.0)},
-                    {"de_vs_raycast_p95", finiteOrNull(l.vs_raycast ? l.vs_raycast->p95 : 0.0)},
-                    {"transmittance_error", finiteOrNull(l.transmittance_error)},
-                    {"finite", l.vs_reference.finite},
-                    {"tolerance", de_tolerance},
-                    {"pass", pass},
-                    {"image", image},
-                    {"error_map", map}});
-    }
-    nlohmann::json tol = nlohmann::json::object();
-    for (const auto& t : tolerances) tol[t.metric] = t.limit;
-    report["runs"].push_back({{"renderer", run.spec.renderer},
-                              {"model", run.model_name},
-                              {"model_asked", run.spec.model},
-                              {"model_description", run.model_description},
-                              {"model_choice", run.model_choice},
-                              {"k", run.k},
-                              {"options", run.spec.options},
-                              {"label", run.spec.label()},
-                              {"classify_ms", run.classify_ms},
-                              {"render_ms", run.render_ms},
-                              {"relight_ms", run.relight_ms},
-                              {"render_fps", 1000.0 / std::max(run.render_ms, 1e-9)},
-                              {"relight_fps", 1000.0 / std::max(run.relight_ms, 1e-9)},
-                              {"tolerances", tol},
-                              {"lights", jl}});
-  }
-  report["pass"] = all_pass;
+  for (const auto& run : summary.runs)
+    report["runs"].push_back(runReport(run, scene, summary.exceedances, o.out_dir));
+  report["pass"] = summary.exceedances.empty();
   nlohmann::json misses = nlohmann::json::array();
   for (const auto& m : summary.exceedances) misses.push_back(m.str());
   report["exceedances"] = misses;
+  report["skipped"] = summary.skipped;
   writeJson((fs::path(o.out_dir) / "report.json").string(), report);
   if (o.charts) renderReportCharts(o.out_dir);
   return summary;
 }
 
 void printSummaryTable(const CompareSummary& s) {
-  fmt::print("{}: reference raycast spectral:81 {:.0f} ms\n", s.scene, s.reference_ms);
+  fmt::print("{}: reference {} {:.0f} ms\n", s.scene, Reference().label(), s.reference_ms);
   fmt::print("{:<40} {:>9} {:>11} {:>9} {:>9}  {}\n", "run", "ms/frame", "relight fps",
              "mean ΔE", "vs ray", "pass");
   for (const auto& run : s.runs) {
@@ -217,9 +238,39 @@ void printSummaryTable(const CompareSummary& s) {
 int runCompare(const CompareOptions& o) {
   const CompareSummary s = runComparison(o);
   if (!o.quiet) printSummaryTable(s);
+  for (const auto& note : s.skipped) fmt::print(stderr, "svr: note: {}\n", note);
   for (const auto& m : s.exceedances) fmt::print(stderr, "svr: tolerance: {}\n", m.str());
   if (!o.quiet) fmt::print("report: {}\n", (fs::path(o.out_dir) / "report.html").string());
   return s.exceedances.empty() ? 0 : 1;
 }
+
+namespace commands {
+
+CommandEntry compare() {
+  return {"compare", "reference and every backend × model on one scene: ΔE2000, times, report",
+          [](CLI::App& sub, CommandContext& context) {
+            auto o = std::make_shared<CompareOptions>();
+            sub.add_option("SCENE", o->scene, "scene JSON")->required();
+            sub.add_option("--renderers", o->renderers, "backends (default: all)")->delimiter(',');
+            sub.add_option("--models", o->models,
+                           "models (default rgb,factor:3,factor:4,factor:6,factor:8,spectral:31)")
+                ->delimiter(',');
+            sub.add_option("--variant", o->variants,
+                           "extra run with a backend option, BACKEND.KEY=VALUE (repeatable)");
+            sub.add_option("--out", o->out_dir, "report folder")->required();
+            auto* width = sub.add_option("--width", o->width, "image width (default: the scene's)");
+            auto* height =
+                sub.add_option("--height", o->height, "image height (default: the scene's)");
+            sub.add_flag("-q,--quiet", o->quiet, "no progress bar or table");
+            sub.callback([o, width, height, &context] {
+              o->data_dir = context.data_dir;
+              if (width->count()) checkImageSize("compare", "--width", o->width);
+              if (height->count()) checkImageSize("compare", "--height", o->height);
+              context.status = runCompare(*o);
+            });
+          }};
+}
+
+}  // namespace commands
 
 }  // namespace svr

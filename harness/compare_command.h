@@ -26,6 +26,7 @@ struct CompareSummary {
   std::string scene;
   std::vector<RunResult> runs;
   std::vector<Exceedance> exceedances;
+  std::vector<std::string> skipped;  // "shearwarp skipped: … orthographic cameras only …"
   double reference_ms = 0.0;
 };
 

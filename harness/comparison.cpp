@@ -5,6 +5,7 @@
 #include <chrono>
 
 #include "renderers/core/classification.h"
+#include "renderers/core/scene_render.h"
 #include "renderers/core/scene_model.h"
 #include "renderers/registry.h"
 #include "spectral/componentwise_model.h"
@@ -41,6 +42,24 @@ std::vector<float> luminanceTransmittance(const LightIndependentImage& image,
 
 }  // namespace
 
+std::string Reference::model() {
+  return fmt::format("spectral:{}", WavelengthGrid::standard().count);
+}
+
+double Reference::stepVoxels(const Scene& scene) const {
+  return std::min(scene.step_voxels, max_step_voxels);
+}
+
+std::string Reference::label() const { return fmt::format("{} {}", renderer, model()); }
+
+nlohmann::json Reference::toJson(const Scene& scene, double render_ms) const {
+  return {{"renderer", renderer},
+          {"model", model()},
+          {"render_ms", render_ms},
+          {"step_voxels", stepVoxels(scene)},
+          {"early_termination", termination}};
+}
+
 std::string RunSpec::label() const {
   if (options.contains(renderer) && !options[renderer].empty())
     return fmt::format("{} {} {}", renderer, model, options[renderer].dump());
@@ -58,9 +77,9 @@ ComparisonSession::ComparisonSession(Scene scene, const std::string& data_dir)
     for (const auto& [index, w] : mix.weights) s = s + illuminations_[index].spectrum * w;
     illuminations_.push_back({fmt::format("mix {}", mix.name), s});
   }
-  // The reference: full-spectral raycast, fine step, every sample composited.
-  Rendered ref = render("raycast", fmt::format("spectral:{}", observer_.grid().count),
-                        nlohmann::json::object(), std::min(scene_.step_voxels, 0.25), 0.0);
+  const Reference reference;
+  Rendered ref = render(reference.renderer, reference.model(), nlohmann::json::object(),
+                        reference.stepVoxels(scene_), reference.termination);
   reference_model_ = std::move(ref.chosen.model);
   reference_ = std::move(ref.image);
   reference_ms_ = ref.render_ms;
@@ -75,20 +94,20 @@ ComparisonSession::Rendered ComparisonSession::render(const std::string& rendere
   scene.step_voxels = step_voxels;
   const auto t_classify = std::chrono::steady_clock::now();
   SceneModel chosen = makeSceneModel(model, scene, observer_);
-  ClassificationOptions copts;
-  copts.step_world = scene.stepWorld();
-  copts.bins = scene.bins;
-  const ClassifiedVolume cv = classify(scene.volume, scene.transfer_function, *chosen.model, copts);
+  const ClassifiedVolume cv = classifyScene(scene, *chosen.model);
   const double classify_ms = msSince(t_classify);
-  nlohmann::json merged = scene.renderer_options;
+  RenderRequest request = sceneRequest(scene, cv);
+  request.termination = termination;
   for (const auto& [backend, values] : options.items())
-    for (const auto& [key, value] : values.items()) merged[backend][key] = value;
-  RenderRequest request{cv,           scene.camera,  scene.width,          scene.height,
-                        scene.shading, scene.light_direction, termination, true,
-                        merged};
+    for (const auto& [key, value] : values.items()) request.options[backend][key] = value;
   const auto t_render = std::chrono::steady_clock::now();
   LightIndependentImage image = renderer->render(request, nullptr);
   return {std::move(chosen), std::move(image), classify_ms, msSince(t_render)};
+}
+
+std::optional<std::string> ComparisonSession::unsupported(const std::string& renderer) const {
+  // The view is what differs between scenes; channel counts are checked when a run renders.
+  return unsupportedBy(backendEntry(renderer).info, scene_.camera, 1, 1);
 }
 
 RunResult ComparisonSession::run(const RunSpec& spec) {

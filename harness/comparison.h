@@ -21,6 +21,18 @@
 
 namespace svr {
 
+// The reference every run is measured against (DESIGN §6): the raycaster with the full
+// spectral model, a fine step and every sample composited.
+struct Reference {
+  std::string renderer = "raycast";
+  double max_step_voxels = 0.25;  // the scene's step, or this if finer
+  double termination = 0.0;       // no early termination
+  static std::string model();     // "spectral:81": every sample of the standard grid
+  double stepVoxels(const Scene& scene) const;
+  std::string label() const;      // "raycast spectral:81"
+  nlohmann::json toJson(const Scene& scene, double render_ms) const;
+};
+
 struct RunSpec {
   std::string renderer = "raycast";
   std::string model = "factor:6";
@@ -64,6 +76,9 @@ class ComparisonSession {
 
   // Renders and measures one run. Throws svr::Error for unknown renderers or bad options.
   RunResult run(const RunSpec& spec);
+  // Why this backend cannot render the scene's view (a perspective camera for shear-warp), or
+  // nothing; the harness skips such runs with this note instead of failing.
+  std::optional<std::string> unsupported(const std::string& renderer) const;
 
  private:
   struct Rendered {

@@ -1,10 +1,13 @@
 #include "harness/demo_command.h"
 
+#include <CLI/CLI.hpp>
+#include <memory>
 #include <fmt/format.h>
 
 #include <filesystem>
 #include <nlohmann/json.hpp>
 
+#include "harness/command.h"
 #include "harness/compare_command.h"
 #include "spectral/atomic_file.h"
 #include "spectral/error.h"
@@ -41,5 +44,23 @@ int runDemo(const DemoOptions& o) {
   fmt::print("report: {}\n", (fs::path(o.out_dir) / "report.html").string());
   return pass ? 0 : 1;
 }
+
+namespace commands {
+
+CommandEntry demo() {
+  return {"demo", "compare every backend and model on the default scenes; writes report.html",
+          [](CLI::App& sub, CommandContext& context) {
+            auto o = std::make_shared<DemoOptions>();
+            sub.add_option("--out", o->out_dir, "report folder")->capture_default_str();
+            sub.add_flag("--quick", o->quick, "fewer models, smaller images (for CI)");
+            sub.add_flag("-q,--quiet", o->quiet, "no progress bars");
+            sub.callback([o, &context] {
+              o->data_dir = context.data_dir;
+              context.status = runDemo(*o);
+            });
+          }};
+}
+
+}  // namespace commands
 
 }  // namespace svr

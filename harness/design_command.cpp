@@ -1,5 +1,7 @@
 #include "harness/design_command.h"
 
+#include <CLI/CLI.hpp>
+#include <memory>
 #include <fmt/format.h>
 
 #include <algorithm>
@@ -8,6 +10,7 @@
 #include <filesystem>
 #include <nlohmann/json.hpp>
 
+#include "harness/command.h"
 #include "harness/image_files.h"
 #include "spectral/atomic_file.h"
 #include "spectral/colorimetry.h"
@@ -169,5 +172,28 @@ int runDesign(const DesignCommandOptions& o) {
                             r.misses.size()));
   return 0;
 }
+
+namespace commands {
+
+CommandEntry design() {
+  return {"design", "design lights and materials from a palette of target colours",
+          [](CLI::App& sub, CommandContext& context) {
+            auto o = std::make_shared<DesignCommandOptions>();
+            sub.add_option("PALETTE", o->palette, "design palette JSON (data/palettes/)")
+                ->required()
+                ->check(CLI::ExistingFile);
+            sub.add_option("--out", o->out_dir, "output folder")->required();
+            sub.add_flag("--strict", o->strict, "exit with status 2 when a cell misses");
+            sub.add_flag("--no-plots", [o](std::int64_t) { o->plots = false; },
+                         "skip spectra.png (matplotlib)");
+            sub.add_flag("-q,--quiet", o->quiet, "no table");
+            sub.callback([o, &context] {
+              o->data_dir = context.data_dir;
+              context.status = runDesign(*o);
+            });
+          }};
+}
+
+}  // namespace commands
 
 }  // namespace svr

@@ -1,8 +1,13 @@
 #include "harness/info_command.h"
 
+#include <CLI/CLI.hpp>
 #include <fmt/format.h>
 
+#include <memory>
+
+#include "harness/command.h"
 #include "renderers/core/volume_description.h"
+#include "spectral/error.h"
 
 namespace svr {
 
@@ -13,5 +18,75 @@ int runInfo(const InfoOptions& options) {
   fmt::print("{}", describeVolume(header, volume));
   return 0;
 }
+
+namespace {
+
+// The --raw-… flags as given on the command line, before they are checked.
+struct RawFlags {
+  std::vector<int> dims;
+  std::vector<double> spacing;
+  std::string type, endian = "little";
+  std::uint64_t header_bytes = 0;
+};
+
+RawLayout rawLayout(const RawFlags& f, bool spacing_given, const std::string& path) {
+  if (f.dims.size() != 3 || f.type.empty())
+    throw Error(fmt::format("{}: a raw layout needs --raw-dims X,Y,Z and --raw-type", path));
+  RawLayout layout;
+  layout.dims = {f.dims[0], f.dims[1], f.dims[2]};
+  try {
+    layout.type = parseScalarType(f.type);
+  } catch (const Error& e) {
+    throw Error(fmt::format("--raw-type: {}", e.what()));
+  }
+  layout.endian = f.endian == "big" ? Endian::kBig : Endian::kLittle;
+  if (spacing_given) {
+    if (f.spacing.size() != 3)
+      throw Error(fmt::format("--raw-spacing: {} values given; expected X,Y,Z", f.spacing.size()));
+    layout.spacing = {f.spacing[0], f.spacing[1], f.spacing[2]};
+  }
+  layout.header_bytes = f.header_bytes;
+  return layout;
+}
+
+}  // namespace
+
+namespace commands {
+
+CommandEntry info() {
+  return {"info", "what a volume file holds: layout, spacing, world box, value range, histogram",
+          [](CLI::App& sub, CommandContext&) {
+            auto o = std::make_shared<InfoOptions>();
+            auto raw = std::make_shared<RawFlags>();
+            auto budget = std::make_shared<std::string>();
+            sub.add_option("FILE", o->path, "volume file: .nrrd, .nhdr, .mhd, .mha, or raw")
+                ->required();
+            std::vector<CLI::Option*> raw_flags{
+                sub.add_option("--raw-dims", raw->dims, "headerless raw file: voxels X,Y,Z")
+                    ->delimiter(','),
+                sub.add_option("--raw-type", raw->type,
+                               "headerless raw file: uint8, int8, uint16, int16, uint32, int32, "
+                               "float32 or float64"),
+                sub.add_option("--raw-endian", raw->endian, "headerless raw file: byte order")
+                    ->check(CLI::IsMember({"little", "big"}))
+                    ->capture_default_str(),
+                sub.add_option("--raw-spacing", raw->spacing, "headerless raw file: X,Y,Z")
+                    ->delimiter(','),
+                sub.add_option("--raw-header-bytes", raw->header_bytes,
+                               "headerless raw file: bytes to skip first")};
+            sub.add_option("--memory-budget", *budget,
+                           "most bytes of voxels to load, e.g. 512M or 2G (default: the memory "
+                           "available now)");
+            sub.callback([o, raw, budget, raw_flags] {
+              if (!budget->empty()) o->memory_budget = parseByteSize(*budget, "--memory-budget");
+              std::size_t given = 0;
+              for (const auto* flag : raw_flags) given += flag->count();
+              if (given > 0) o->raw = rawLayout(*raw, raw_flags[3]->count() > 0, o->path);
+              runInfo(*o);
+            });
+          }};
+}
+
+}  // namespace commands
 
 }  // namespace svr

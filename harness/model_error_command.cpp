@@ -1,5 +1,7 @@
 #include "harness/model_error_command.h"
 
+#include <CLI/CLI.hpp>
+#include <memory>
 #include <fmt/format.h>
 
 #include <chrono>
@@ -7,6 +9,7 @@
 #include <map>
 #include <nlohmann/json.hpp>
 
+#include "harness/command.h"
 #include "harness/progress.h"
 #include "spectral/atomic_file.h"
 #include "spectral/colorimetry.h"
@@ -209,5 +212,35 @@ int runModelError(const ModelErrorOptions& o) {
   }
   return 0;
 }
+
+namespace commands {
+
+CommandEntry model_error() {
+  return {"model-error", "accuracy of every colour model against the exact spectral product",
+          [](CLI::App& sub, CommandContext& context) {
+            auto o = std::make_shared<ModelErrorOptions>();
+            sub.add_option("--lights", o->lights,
+                           "library light names (default A D65 F2 F7 F11 LED-B1)")
+                ->delimiter(',');
+            sub.add_option("--reflectances", o->reflectances,
+                           "reflectance names, or 'munsell' / 'colorchecker', as the test set")
+                ->delimiter(',');
+            sub.add_option("--palette", o->palette,
+                           "palette or scene JSON: train and test on its own lights × materials")
+                ->check(CLI::ExistingFile);
+            sub.add_option("--json", o->json_path, "write every row as JSON to this file");
+            sub.add_option("--kmin", o->k_min, "smallest k")->capture_default_str();
+            sub.add_option("--kmax", o->k_max, "largest k")->capture_default_str();
+            sub.add_flag("--contrast", o->contrast,
+                         "also show closed-form (unrefined) sharpening, which is unstable");
+            sub.add_flag("-q,--quiet", o->quiet, "no progress bar");
+            sub.callback([o, &context] {
+              o->data_dir = context.data_dir;
+              context.status = runModelError(*o);
+            });
+          }};
+}
+
+}  // namespace commands
 
 }  // namespace svr

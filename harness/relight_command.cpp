@@ -1,5 +1,7 @@
 #include "harness/relight_command.h"
 
+#include <CLI/CLI.hpp>
+#include <memory>
 #include <fmt/format.h>
 
 #include <cmath>
@@ -7,10 +9,9 @@
 #include <map>
 #include <sstream>
 
+#include "harness/command.h"
 #include "harness/image_files.h"
-#ifdef SVR_HAVE_GL
-#include "renderers/gl/gl_relighter.h"
-#endif
+#include "renderers/registry.h"
 #include "spectral/colorimetry.h"
 #include "spectral/error.h"
 #include "spectral/light_mixer.h"
@@ -73,20 +74,43 @@ int runRelight(const RelightOptions& o) {
   post.setLight(light, o.exposure);
   if (!o.background.empty()) post.setBackground(model->project(library.get(o.background)));
   std::vector<std::uint8_t> rgb(3 * image.pixels());
-  if (o.gl) {
-#ifdef SVR_HAVE_GL
-    GlRelighter gl;
-    gl.setImage(image);
-    gl.relightSrgb8(post.foldedMatrix(image, RelitSpace::kLinearSrgb), rgb);
-#else
-    throw Error("relight: --gl needs the gl backend, which is not built: OSMesa was not found "
-                "when svr was configured (install libosmesa6-dev and configure again)");
-#endif
+  if (!o.relighter.empty()) {
+    const auto device = makeRelighter(o.relighter);
+    device->setImage(image);
+    device->relightSrgb8(post.foldedMatrix(image, RelitSpace::kLinearSrgb), rgb);
   } else {
     post.relightSrgb8(image, rgb);
   }
   writeSrgbPng(rgb, image.width(), image.height(), o.out);
   return 0;
 }
+
+namespace commands {
+
+CommandEntry relight() {
+  return {"relight", "apply a light or light mix to a saved light-independent image",
+          [](CLI::App& sub, CommandContext& context) {
+            auto o = std::make_shared<RelightOptions>();
+            sub.add_option("IMAGE", o->image, "light_independent.exr from svr render")->required();
+            sub.add_option("--light", o->light, "library light name, e.g. D65");
+            sub.add_option("--mix", o->mix, "weighted lights, e.g. A:0.3,F11:0.7");
+            sub.add_option("--model", o->model,
+                           "colour model JSON (default: the one named in the EXR)");
+            sub.add_option("--background", o->background,
+                           "library reflectance seen through the volume");
+            sub.add_option("--exposure", o->exposure, "scale of the relit image")
+                ->capture_default_str();
+            sub.add_option("--out", o->out, "PNG to write")->required();
+            sub.add_option("--on", o->relighter,
+                           "relight on this backend's device instead of the CPU (gl: an OpenGL "
+                           "fragment shader)");
+            sub.callback([o, &context] {
+              o->data_dir = context.data_dir;
+              context.status = runRelight(*o);
+            });
+          }};
+}
+
+}  // namespace commands
 
 }  // namespace svr

@@ -1,18 +1,23 @@
 #include "harness/render_command.h"
 
+#include <CLI/CLI.hpp>
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
 #include <cctype>
 #include <chrono>
 #include <filesystem>
+#include <memory>
 #include <nlohmann/json.hpp>
 
+#include "harness/command.h"
 #include "harness/image_files.h"
 #include "harness/interrupt.h"
 #include "harness/progress.h"
-#include "renderers/core/classification.h"
+#include "renderers/core/memory_budget.h"
 #include "renderers/core/scene.h"
 #include "renderers/core/scene_model.h"
+#include "renderers/core/scene_render.h"
 #include "renderers/registry.h"
 #include "spectral/atomic_file.h"
 #include "spectral/colorimetry.h"
@@ -32,113 +37,48 @@ double msSince(std::chrono::steady_clock::time_point t0) {
 // A light or mix name as a file name: letters, digits, '-', '_' and '.' survive.
 std::string fileStem(const std::string& name) {
   std::string out;
-  for (char c : name) out += (std::isalnum(static_cast<unsigned char>(c)) || c == '-' || c == '_' || c == '.') ? c : '_';
+  for (char c : name)
+    out += (std::isalnum(static_cast<unsigned char>(c)) || c == '-' || c == '_' || c == '.') ? c
+                                                                                             : '_';
   return out.empty() ? "light" : out;
 }
 
-// "splat.mode=sheet" → options["splat"]["mode"] = "sheet"; values that parse as JSON (numbers,
-// true/false) keep their type.
-void applyOption(nlohmann::json& options, const std::string& text) {
-  const auto dot = text.find('.'), eq = text.find('=');
-  if (dot == std::string::npos || eq == std::string::npos || dot == 0 || eq < dot + 2)
-    throw Error(fmt::format("--option '{}': expected BACKEND.KEY=VALUE, e.g. splat.mode=sheet", text));
-  const std::string backend = text.substr(0, dot), key = text.substr(dot + 1, eq - dot - 1);
-  const std::string value = text.substr(eq + 1);
-  nlohmann::json parsed = nlohmann::json::parse(value, nullptr, false);
-  options[backend][key] = parsed.is_discarded() ? nlohmann::json(value) : parsed;
-}
+// One relit output: a scene light or a mix of them, in the model's coefficients.
+struct RelitOutput {
+  std::string name, file;
+  Eigen::VectorXd light;
+  std::vector<std::uint8_t> rgb;
+};
 
-}  // namespace
-
-int runRender(const RenderOptions& o) {
-  using clock = std::chrono::steady_clock;
-  const auto t_load = clock::now();
-  const WavelengthGrid grid = WavelengthGrid::standard();
-  const auto library = SpectrumLibrary::load(o.data_dir, grid);
-  const auto observer = Observer::cie1931(o.data_dir, grid);
-  VolumeLoadOptions volume_options;
-  if (o.memory_budget) volume_options.memory_budget = *o.memory_budget;
-  Scene scene = loadScene(o.scene, library, volume_options);
-  if (o.width) scene.width = *o.width;
-  if (o.height) scene.height = *o.height;
-  const auto renderer = makeRenderer(o.renderer);  // unknown names fail before any work
-  checkRendererOptions(scene.renderer_options, o.scene + ": render.options");
-  for (const auto& option : o.options) applyOption(scene.renderer_options, option);
-  checkRendererOptions(scene.renderer_options, "--option");
-  const double load_ms = msSince(t_load);
-
-  const auto t_classify = clock::now();
-  const std::string model_name = o.model.empty() ? scene.model : o.model;
-  const SceneModel chosen = makeSceneModel(model_name, scene, observer);
-  const ColourModel& model = *chosen.model;
-  ClassificationOptions copts;
-  copts.step_world = scene.stepWorld();
-  copts.bins = scene.bins;
-  const ClassifiedVolume classified = classify(scene.volume, scene.transfer_function, model, copts);
-  const double classify_ms = msSince(t_classify);
-
-  const auto t_render = clock::now();
-  LightIndependentImage image;
-  {
-    Progress progress("render", 100, o.quiet);
-    int shown = 0;
-    RenderRequest request{classified, scene.camera, scene.width, scene.height, scene.shading,
-                          scene.light_direction, scene.termination, true,
-                          scene.renderer_options};
-    image = renderer->render(request, [&](double f) {
-      while (shown < static_cast<int>(f * 100)) ++shown, progress.advance();
-    });
-  }
-  const double render_ms = msSince(t_render);
-
-  // From here on files are written: Ctrl-C waits for them to be complete (issue 9).
-  const WritingOutputs writing;
-  std::error_code mkdir_error;
-  fs::create_directories(o.out_dir, mkdir_error);
-  if (mkdir_error)
-    throw Error(fmt::format("--out {}: cannot create the folder: {}", o.out_dir,
-                            mkdir_error.message()));
-  // Relight under every light and mix.
-  const auto t_relight = clock::now();
-  PostIlluminator post(model);
-  if (scene.background) post.setBackground(model.project(*scene.background));
-  std::vector<Eigen::VectorXd> light_coeffs;
-  for (const auto& l : scene.lights) light_coeffs.push_back(model.project(observer.unitLuminance(l.spectrum)));
-  struct Output {
-    std::string name, file;
-    Eigen::VectorXd light;
-  };
-  std::vector<Output> outputs;
+std::vector<RelitOutput> sceneOutputs(const Scene& scene, const ColourModel& model,
+                                      const Observer& observer) {
+  std::vector<Eigen::VectorXd> coeffs;
+  for (const auto& l : scene.lights)
+    coeffs.push_back(model.project(observer.unitLuminance(l.spectrum)));
+  std::vector<RelitOutput> outputs;
   for (size_t i = 0; i < scene.lights.size(); ++i)
-    outputs.push_back({scene.lights[i].name, fileStem(scene.lights[i].name) + ".png", light_coeffs[i]});
+    outputs.push_back({scene.lights[i].name, fileStem(scene.lights[i].name) + ".png", coeffs[i], {}});
   for (const auto& mix : scene.mixes) {
     std::vector<Eigen::VectorXd> ls;
     std::vector<double> ws;
-    for (const auto& [index, w] : mix.weights) ls.push_back(light_coeffs[index]), ws.push_back(w);
-    outputs.push_back({mix.name, "mix_" + fileStem(mix.name) + ".png", mixLights(ls, ws)});
+    for (const auto& [index, w] : mix.weights) ls.push_back(coeffs[index]), ws.push_back(w);
+    outputs.push_back({mix.name, "mix_" + fileStem(mix.name) + ".png", mixLights(ls, ws), {}});
   }
-  std::vector<std::vector<std::uint8_t>> relit(outputs.size());
-  for (size_t i = 0; i < outputs.size(); ++i) {
-    relit[i].resize(3 * image.pixels());
-    post.setLight(outputs[i].light);
-    post.relightSrgb8(image, relit[i]);
-  }
-  const double relight_ms = msSince(t_relight) / std::max<size_t>(outputs.size(), 1);
+  return outputs;
+}
 
-  const LightIndependentImage stored =
-      o.half ? image.withStorage(SampleStorage::kHalf) : image;
-  const std::string exr = (fs::path(o.out_dir) / "light_independent.exr").string();
-  const std::string model_file = (fs::path(o.out_dir) / "light_independent.model.json").string();
-  saveModel(model, model_file);
-  writeLightIndependentExr(stored, exr,
-                           {{"model", model.name()}, {"model_file", "light_independent.model.json"},
-                            {"scene", o.scene}, {"renderer", renderer->name()}});
-  for (size_t i = 0; i < outputs.size(); ++i)
-    writeSrgbPng(relit[i], image.width(), image.height(),
-                 (fs::path(o.out_dir) / outputs[i].file).string());
+struct Timings {
+  double load = 0, classify = 0, render = 0, relight = 0;
+};
 
-  nlohmann::json report = {
-      {"renderer", renderer->name()},
+nlohmann::json renderReport(const RenderOptions& o, const Scene& scene, const Renderer& renderer,
+                            const SceneModel& chosen, const LightIndependentImage& image,
+                            const std::vector<RelitOutput>& outputs, const Timings& t) {
+  const ColourModel& model = *chosen.model;
+  nlohmann::json images = nlohmann::json::array();
+  for (const auto& out : outputs) images.push_back({{"light", out.name}, {"file", out.file}});
+  return {
+      {"renderer", renderer.name()},
       {"model", model.name()},
       {"model_description", chosen.description},
       {"model_choice", chosen.record()},
@@ -154,19 +94,140 @@ int runRender(const RenderOptions& o) {
       {"exr", "light_independent.exr"},
       {"model_file", "light_independent.model.json"},
       {"timings_ms",
-       {{"load", load_ms}, {"classify", classify_ms}, {"render", render_ms}, {"relight", relight_ms}}},
+       {{"load", t.load}, {"classify", t.classify}, {"render", t.render}, {"relight", t.relight}}},
+      {"images", images},
   };
-  nlohmann::json images = nlohmann::json::array();
-  for (const auto& out : outputs) images.push_back({{"light", out.name}, {"file", out.file}});
-  report["images"] = images;
-  const std::string report_path = (fs::path(o.out_dir) / "render.json").string();
-  writeTextAtomically(report_path, report.dump(1) + "\n");
+}
+
+}  // namespace
+
+int runRender(const RenderOptions& o) {
+  using clock = std::chrono::steady_clock;
+  Timings t;
+  const auto t_load = clock::now();
+  const WavelengthGrid grid = WavelengthGrid::standard();
+  const auto library = SpectrumLibrary::load(o.data_dir, grid);
+  const auto observer = Observer::cie1931(o.data_dir, grid);
+  VolumeLoadOptions volume_options;
+  if (o.memory_budget) volume_options.memory_budget = *o.memory_budget;
+  Scene scene = loadScene(o.scene, library, volume_options);
+  if (o.width) scene.width = *o.width;
+  if (o.height) scene.height = *o.height;
+  const auto renderer = makeRenderer(o.renderer);  // unknown names fail before any work
+  checkRendererOptions(scene.renderer_options, o.scene + ": render.options");
+  for (const auto& option : o.options)
+    applyOptionAssignment(scene.renderer_options, option, "--option");
+  t.load = msSince(t_load);
+
+  const auto t_classify = clock::now();
+  const SceneModel chosen = makeSceneModel(o.model.empty() ? scene.model : o.model, scene, observer);
+  const ColourModel& model = *chosen.model;
+  const ClassifiedVolume classified = classifyScene(scene, model);
+  t.classify = msSince(t_classify);
+  // The light-independent image and every relit image, before any of them is allocated.
+  const std::uint64_t relit_count = scene.lights.size() + scene.mixes.size();
+  checkMemoryBudget(LightIndependentImage::bytesFor(scene.width, scene.height, classified.k,
+                                                    classified.t_channels) +
+                        3 * relit_count * std::uint64_t(scene.width) * scene.height,
+                    volume_options.memory_budget,
+                    fmt::format("{}: a {}×{} image of {} + {} channels and {} relit images",
+                                o.scene, scene.width, scene.height, classified.k,
+                                classified.t_channels, relit_count));
+
+  const auto t_render = clock::now();
+  LightIndependentImage image;
+  {
+    Progress progress("render", 100, o.quiet);
+    int shown = 0;
+    RenderRequest request = sceneRequest(scene, classified);
+    request.memory_budget = volume_options.memory_budget;
+    image = renderer->render(request, [&](double f) {
+      while (shown < static_cast<int>(f * 100)) ++shown, progress.advance();
+    });
+  }
+  t.render = msSince(t_render);
+
+  // From here on files are written: Ctrl-C waits for them to be complete (issue 9).
+  const WritingOutputs writing;
+  std::error_code mkdir_error;
+  fs::create_directories(o.out_dir, mkdir_error);
+  if (mkdir_error)
+    throw Error(fmt::format("--out {}: cannot create the folder: {}", o.out_dir,
+                            mkdir_error.message()));
+  const auto t_relight = clock::now();
+  PostIlluminator post(model);
+  if (scene.background) post.setBackground(model.project(*scene.background));
+  std::vector<RelitOutput> outputs = sceneOutputs(scene, model, observer);
+  for (auto& out : outputs) {
+    out.rgb.resize(3 * image.pixels());
+    post.setLight(out.light);
+    post.relightSrgb8(image, out.rgb);
+  }
+  t.relight = msSince(t_relight) / std::max<size_t>(outputs.size(), 1);
+
+  const LightIndependentImage stored = o.half ? image.withStorage(SampleStorage::kHalf) : image;
+  saveModel(model, (fs::path(o.out_dir) / "light_independent.model.json").string());
+  writeLightIndependentExr(stored, (fs::path(o.out_dir) / "light_independent.exr").string(),
+                           {{"model", model.name()}, {"model_file", "light_independent.model.json"},
+                            {"scene", o.scene}, {"renderer", renderer->name()}});
+  for (const auto& out : outputs)
+    writeSrgbPng(out.rgb, image.width(), image.height(), (fs::path(o.out_dir) / out.file).string());
+  const nlohmann::json report = renderReport(o, scene, *renderer, chosen, image, outputs, t);
+  writeTextAtomically((fs::path(o.out_dir) / "render.json").string(), report.dump(1) + "\n");
   if (!o.quiet)
     fmt::print("{}: {} with {} ({}), {}×{}: load {:.0f} ms, classify {:.0f} ms, render {:.0f} ms, "
                "relight {:.2f} ms/light → {}\n",
                o.scene, renderer->name(), model.name(), chosen.description, image.width(),
-               image.height(), load_ms, classify_ms, render_ms, relight_ms, o.out_dir);
+               image.height(), t.load, t.classify, t.render, t.relight, o.out_dir);
   return 0;
 }
+
+namespace commands {
+
+CommandEntry render() {
+  return {"render", "render a scene once, relight it under every scene light and mix",
+          [](CLI::App& sub, CommandContext& context) {
+            auto o = std::make_shared<RenderOptions>();
+            auto budget = std::make_shared<std::string>();
+            auto help_options = std::make_shared<std::string>();
+            sub.add_option("SCENE", o->scene, "scene JSON (see docs/scenes.md)");
+            sub.add_option("--renderer", o->renderer,
+                           fmt::format("backend: {}", fmt::join(rendererNames(), ", ")))
+                ->capture_default_str();
+            sub.add_option("--model", o->model,
+                           "colour model: rgb, factor:k, spectral:n or auto (default: the scene's)");
+            sub.add_option("--out", o->out_dir, "output folder");
+            sub.add_option("--width", o->width, "image width (default: the scene's)");
+            sub.add_option("--height", o->height, "image height (default: the scene's)");
+            sub.add_flag("--half", o->half, "store the light-independent EXR as half floats");
+            sub.add_option("--option", o->options,
+                           "backend option BACKEND.KEY=VALUE (repeatable), e.g. splat.mode=sheet; "
+                           "--help-options lists them");
+            sub.add_option("--memory-budget", *budget,
+                           "most bytes of voxels and images, e.g. 512M or 2G (default: the "
+                           "memory available now)");
+            sub.add_flag("-q,--quiet", o->quiet, "no progress bar or summary");
+            sub.add_option("--help-options", *help_options,
+                           "print every backend's options (or BACKEND's) and exit")
+                ->expected(0, 1)
+                ->default_str("all");
+            sub.callback([o, budget, help_options, &sub, &context] {
+              if (sub.count("--help-options")) {
+                fmt::print("{}", describeBackends(*help_options == "all" ? "" : *help_options));
+                return;
+              }
+              if (o->scene.empty() || o->out_dir.empty())
+                throw Error("render: SCENE and --out DIR are required");
+              o->data_dir = context.data_dir;
+              if (!budget->empty()) o->memory_budget = parseByteSize(*budget, "--memory-budget");
+              if (o->width) checkImageSize("render", "--width", *o->width);
+              if (o->height) checkImageSize("render", "--height", *o->height);
+              installInterruptHandler();
+              context.status = runRender(*o);
+            });
+          }};
+}
+
+}  // namespace commands
 
 }  // namespace svr

@@ -1,5 +1,7 @@
 #include "harness/sweep_command.h"
 
+#include <CLI/CLI.hpp>
+#include <memory>
 #include <fmt/format.h>
 
 #include <algorithm>
@@ -7,6 +9,7 @@
 #include <filesystem>
 #include <glm/geometric.hpp>
 
+#include "harness/command.h"
 #include "harness/compare_command.h"
 #include "harness/comparison.h"
 #include "harness/progress.h"
@@ -74,7 +77,10 @@ void apply(const ParamRange& p, double v, const Scene& base, Scene& s, std::stri
       s.transfer_function.materials[i].extinction = base.transfer_function.materials[i].extinction * v;
   } else {
     const auto dot = p.name.find('.');
-    options[p.name.substr(0, dot)][p.name.substr(dot + 1)] = v;
+    // Whole values as integers, so integer options (shearwarp.supersample) take them.
+    const nlohmann::json value =
+        v == std::round(v) && std::abs(v) < 1e9 ? nlohmann::json(std::llround(v)) : nlohmann::json(v);
+    options[p.name.substr(0, dot)][p.name.substr(dot + 1)] = value;
   }
 }
 
@@ -93,6 +99,16 @@ SweepResult runSweepStudy(const SweepOptions& o) {
   for (double v = range.from; v <= range.to + 1e-9 * std::max(1.0, std::abs(range.to)); v += range.step)
     result.values.push_back(v);
   for (const auto& r : renderers) result.curves.push_back({r, {}, {}, {}});
+  // Every value is checked before anything renders: a mistyped backend, key or an
+  // out-of-range value fails as in svr render.
+  checkRendererOptions(base.renderer_options, o.scene + ": render.options");
+  for (double v : result.values) {
+    Scene s = base;
+    std::string model = o.model;
+    nlohmann::json options = nlohmann::json::object();
+    apply(range, v, base, s, model, options);
+    checkRendererOptions(options, fmt::format("--param '{}' at {}", o.param, v));
+  }
 
   Progress progress("sweep", static_cast<int>(result.values.size()), o.quiet);
   for (double v : result.values) {
@@ -169,5 +185,40 @@ int runSweep(const SweepOptions& o) {
   }
   return 0;
 }
+
+namespace commands {
+
+CommandEntry sweep() {
+  return {"sweep", "ΔE2000 and time against one parameter, with jumps and blow-ups flagged",
+          [](CLI::App& sub, CommandContext& context) {
+            auto o = std::make_shared<SweepOptions>();
+            auto size = std::make_shared<int>(0);
+            sub.add_option("SCENE", o->scene, "scene JSON")->required();
+            sub.add_option("--param", o->param,
+                           "NAME=FROM:TO:STEP; NAME: azimuth, elevation, zoom, step, k, depth or "
+                           "BACKEND.KEY")
+                ->required();
+            sub.add_option("--renderers", o->renderers, "backends (default: all)")->delimiter(',');
+            sub.add_option("--model", o->model, "colour model")->capture_default_str();
+            auto* size_option = sub.add_option("--size", *size, "image width and height (default 96)");
+            auto* width = sub.add_option("--width", o->width, "image width (default 96)");
+            auto* height = sub.add_option("--height", o->height, "image height (default 96)");
+            size_option->excludes(width)->excludes(height);
+            sub.add_option("--out", o->out_dir, "output folder")->required();
+            sub.add_flag("-q,--quiet", o->quiet, "no progress bar");
+            sub.callback([o, size, size_option, width, height, &context] {
+              o->data_dir = context.data_dir;
+              if (size_option->count()) {
+                checkImageSize("sweep", "--size", *size);
+                o->width = o->height = *size;
+              }
+              if (width->count()) checkImageSize("sweep", "--width", o->width);
+              if (height->count()) checkImageSize("sweep", "--height", o->height);
+              context.status = runSweep(*o);
+            });
+          }};
+}
+
+}  // namespace commands
 
 }  // namespace svr

@@ -19,6 +19,11 @@ class LightIndependentImage {
   // Throws svr::Error for non-positive or absurd sizes.
   LightIndependentImage(int width, int height, int channels, int transmittance_channels,
                         SampleStorage storage = SampleStorage::kFloat);
+  // Bytes of such an image's planes as floats, for memory-budget checks before allocating.
+  static std::uint64_t bytesFor(int width, int height, int channels, int transmittance_channels) {
+    return std::uint64_t(width) * std::uint64_t(height) *
+           std::uint64_t(channels + transmittance_channels) * sizeof(float);
+  }
 
   int width() const { return width_; }
   int height() const { return height_; }

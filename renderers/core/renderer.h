@@ -2,16 +2,24 @@
 // The interface every backend implements (DESIGN §3, §5): the same classified volume, camera
 // and shading in; the same light-independent k-channel image out (S, and T for the backdrop).
 // Backends differ only in how they sample and composite.
+//
+// Renderer::render is the one entry, and it is not virtual (pbrt's Render / Li split): it checks
+// the request against what the backend supports, reads the backend's options against its
+// description, drives progress, calls the backend's renderImpl, and runs the one finite check,
+// which names backend, channel and pixel. A backend writes only renderImpl.
 
-#include <functional>
 #include <memory>
+#include <optional>
 #include <string>
 
 #include <glm/vec3.hpp>
 #include <nlohmann/json.hpp>
 
+#include "renderers/core/backend_info.h"
 #include "renderers/core/camera.h"
 #include "renderers/core/classification.h"
+#include "renderers/core/memory_budget.h"
+#include "renderers/core/progress_counter.h"
 #include "renderers/core/scene.h"
 #include "spectral/light_independent_image.h"
 
@@ -26,20 +34,33 @@ struct RenderRequest {
   double termination = 0.01;  // early termination when max T < this; 0 = off
   bool empty_space_skipping = true;
   // Backend options, keyed by backend name: {"splat": {"mode": "sheet"}}. Each backend reads
-  // its own object (through a JsonReader, so unknown keys are errors) and ignores the others',
+  // its own object against its description (unknown keys are errors) and ignores the others',
   // so one set of options can drive a comparison across every backend.
   nlohmann::json options = nlohmann::json::object();
+  // Names the options' source in errors: "scene.json: render.options".
+  std::string options_source = "render.options";
+  // The image and the backend's working memory must fit (checked before allocating).
+  std::uint64_t memory_budget = defaultMemoryBudget();
 };
-
-// Called with the fraction done, from one thread, often enough for a progress bar.
-using ProgressFn = std::function<void(double)>;
 
 class Renderer {
  public:
   virtual ~Renderer() = default;
-  virtual std::string name() const = 0;
-  virtual LightIndependentImage render(const RenderRequest& request,
-                                       const ProgressFn& progress) const = 0;
+  virtual const BackendInfo& info() const = 0;
+  std::string name() const { return info().name; }
+
+  // Throws svr::Error for a request the backend does not support, bad options, or a non-finite
+  // value in the image.
+  LightIndependentImage render(const RenderRequest& request,
+                               const ProgressFn& progress = nullptr) const;
+
+ protected:
+  // Bytes the backend allocates beyond the output image for this request (intermediate
+  // images, sheet buffers), for the memory-budget check.
+  virtual std::uint64_t workingBytes(const RenderRequest& request) const { return 0; }
+  virtual LightIndependentImage renderImpl(const RenderRequest& request,
+                                           const BackendOptions& options,
+                                           ProgressCounter& progress) const = 0;
 };
 
 }  // namespace svr

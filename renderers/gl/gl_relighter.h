@@ -11,22 +11,23 @@
 #include <memory>
 #include <span>
 
+#include "renderers/core/relighter.h"
 #include "spectral/light_independent_image.h"
 
 namespace svr {
 
-class GlRelighter {
+class GlRelighter final : public Relighter {
  public:
   GlRelighter();  // throws svr::Error when no GL 4.5 context can be made
-  ~GlRelighter();
+  ~GlRelighter() override;
   GlRelighter(const GlRelighter&) = delete;
   GlRelighter& operator=(const GlRelighter&) = delete;
 
   // Uploads the planes (float or half). Throws svr::Error beyond the context's limits.
-  void setImage(const LightIndependentImage& image);
+  void setImage(const LightIndependentImage& image) override;
   // folded: 3 × planes, to linear sRGB (PostIlluminator::foldedMatrix(image, kLinearSrgb)).
   // rgb: interleaved 8-bit sRGB, 3 × pixels, row 0 at the top (PostIlluminator's layout).
-  void relightSrgb8(const Eigen::MatrixXd& folded, std::span<std::uint8_t> rgb) const;
+  void relightSrgb8(const Eigen::MatrixXd& folded, std::span<std::uint8_t> rgb) const override;
 
  private:
   struct Impl;

@@ -27,12 +27,8 @@
 // Output is identical for any OpenMP or llvmpipe (LP_NUM_THREADS) thread count: llvmpipe
 // blends each tile's fragments in primitive order, and the CPU side joins in a fixed order.
 //
-// Options, under options["gl"]: the splat backend's, with its defaults (splat_renderer.h)
-//   mode     "sheet" | "direct"
-//   sigma    kernel σ in voxels
-//   radius   kernel truncation radius in voxels
-//   sheet    sheet thickness in voxels, 0.1 – 8
-//   lowpass  screen-space low-pass σ in pixels
+// Options: the splat backend's, with its defaults (core/splat_settings.h; `svr render
+// --help-options gl`).
 
 #include <memory>
 #include <mutex>
@@ -46,14 +42,17 @@ class GlSplatRenderer final : public Renderer {
  public:
   GlSplatRenderer();
   ~GlSplatRenderer() override;
-  std::string name() const override { return "gl"; }
+  const BackendInfo& info() const override;
+
+ protected:
   // Throws svr::Error when no context can be made, a shader fails, or the image or volume
   // exceeds the context's limits (named in the message).
-  LightIndependentImage render(const RenderRequest& request,
-                               const ProgressFn& progress) const override;
+  LightIndependentImage renderImpl(const RenderRequest& request, const BackendOptions& options,
+                                   ProgressCounter& progress) const override;
 
  private:
   struct State;
+  class Frame;
   mutable std::mutex mutex_;
   mutable std::unique_ptr<State> state_;
 };

@@ -11,7 +11,7 @@
 #include <vector>
 
 #include "renderers/core/classification.h"
-#include "renderers/splat/splat_voxels.h"
+#include "renderers/core/splat_voxels.h"
 
 namespace svr::gl {
 

@@ -140,6 +140,11 @@ std::size_t AxisEncoding::storedVoxels() const {
 
 RleVolume::RleVolume(const ClassifiedVolume& cv) : cv_(cv) {}
 
+std::shared_ptr<const RleVolume> RleVolume::of(const ClassifiedVolume& cv) {
+  return cv.derived->get<RleVolume>("shearwarp.rle",
+                                    [&] { return std::make_shared<const RleVolume>(cv); });
+}
+
 const AxisEncoding& RleVolume::encoding(int axis) const {
   std::call_once(once_[axis], [&] { axes_[axis] = std::make_unique<AxisEncoding>(cv_, axis); });
   return *axes_[axis];

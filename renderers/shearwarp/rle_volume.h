@@ -83,6 +83,9 @@ class AxisEncoding {
 class RleVolume {
  public:
   explicit RleVolume(const ClassifiedVolume& cv);
+  // The classification's instance (cached on it), so a series of views pays for each axis's
+  // encoding once.
+  static std::shared_ptr<const RleVolume> of(const ClassifiedVolume& cv);
   const ClassifiedVolume& classified() const { return cv_; }
   const AxisEncoding& encoding(int axis) const;
   void buildAll() const;

@@ -11,41 +11,20 @@
 #include "renderers/shearwarp/shear_warp_factorization.h"
 #include "renderers/shearwarp/shearwarp_kernel.h"
 #include "spectral/error.h"
-#include "spectral/json_reader.h"
+#include "renderers/core/channel_widths.h"
+#include "renderers/registry.h"
+#include "renderers/shearwarp/rle_volume.h"
 
 namespace svr {
 namespace {
 
 using ScanlineFn = void (*)(const shearwarp::CompositeJob&, int, std::vector<int>&);
 
-// The single list of channel counts with a compiled kernel; anything else is dynamic.
-#define SVR_SHEARWARP_WIDTHS(X) X(3) X(4) X(6) X(8)
-
 template <bool kSpectralT>
 ScanlineFn pickKernel(int k) {
-  switch (k) {
-#define SVR_CASE(N) \
-  case N:           \
+  return pickWidth(k, false, []<int N>() -> ScanlineFn {
     return &shearwarp::compositeScanline<N, kSpectralT>;
-    SVR_SHEARWARP_WIDTHS(SVR_CASE)
-#undef SVR_CASE
-    default:
-      return &shearwarp::compositeScanline<0, kSpectralT>;
-  }
-}
-
-struct Options {
-  int supersample = 1;
-};
-
-Options readOptions(const nlohmann::json& options, const std::string& name) {
-  Options o;
-  if (!options.is_object() || !options.contains(name)) return o;
-  const JsonReader r(options.at(name), "render.options", name);
-  if (!r.isObject()) r.fail(fmt::format("expected an object, got {}", r.json().dump()));
-  o.supersample = r.integer("supersample", o.supersample, 1, 4);
-  r.rejectUnknownKeys();
-  return o;
+  });
 }
 
 // Sign-preserving power: factor-model transmission coefficients may dip slightly below zero,
@@ -56,25 +35,25 @@ float signedPow(float t, double r) {
 
 }  // namespace
 
-LightIndependentImage ShearWarpRenderer::render(const RenderRequest& request,
-                                                const ProgressFn& progress) const {
-  const shearwarp::RleVolume encoded(request.volume);
-  return render(encoded, request, progress);
+const BackendInfo& ShearWarpRenderer::info() const {
+  static const BackendInfo info{
+      "shearwarp", "Lacroute & Levoy shear-warp over run-length-encoded classified slices",
+      {.perspective = false, .spectral_transmittance = true,
+       .max_channels = shearwarp::kMaxChannels},
+      {OptionSpec::integer("supersample", 1, 1, 4,
+                           "intermediate pixels per voxel along each slice axis: less blur "
+                           "under zoom, for time")}};
+  return info;
 }
 
-LightIndependentImage ShearWarpRenderer::render(const shearwarp::RleVolume& encoded,
-                                                const RenderRequest& req,
-                                                const ProgressFn& progress) const {
+LightIndependentImage ShearWarpRenderer::renderImpl(const RenderRequest& req,
+                                                    const BackendOptions& options,
+                                                    ProgressCounter& progress) const {
   const ClassifiedVolume& cv = req.volume;
-  if (&encoded.classified() != &cv)
-    throw Error("shearwarp: the encoding was made for another classified volume");
-  if (cv.k > shearwarp::kMaxChannels)
-    throw Error(fmt::format("shearwarp: {} channels exceed the supported {}", cv.k,
-                            shearwarp::kMaxChannels));
-  const Options options = readOptions(req.options, name());
+  const std::shared_ptr<const shearwarp::RleVolume> encoded = shearwarp::RleVolume::of(cv);
   const shearwarp::ShearWarpFactorization view = shearwarp::factorizeView(
-      req.camera, req.width, req.height, cv.dims, cv.spacing, options.supersample);
-  const shearwarp::AxisEncoding& encoding = encoded.encoding(view.axis);
+      req.camera, req.width, req.height, cv.dims, cv.spacing, options.integer("supersample"));
+  const shearwarp::AxisEncoding& encoding = encoded->encoding(view.axis);
 
   // Opacity and transmission for the slice spacing instead of the classification step.
   const double ratio = view.slice_spacing_world / cv.step_world;
@@ -99,7 +78,7 @@ LightIndependentImage ShearWarpRenderer::render(const shearwarp::RleVolume& enco
                               PhongSetup(req.shading, light, half),
                               &intermediate};
   const ScanlineFn fn = cv.t_channels > 1 ? pickKernel<true>(cv.k) : pickKernel<false>(cv.k);
-  std::atomic<int> done{0};
+  progress.stage(view.height, 0.0, 0.95);
   // Each intermediate scanline only ever receives its own rays, so scanlines composite
   // independently through all slices: no barrier per slice.
 #pragma omp parallel
@@ -108,24 +87,19 @@ LightIndependentImage ShearWarpRenderer::render(const shearwarp::RleVolume& enco
 #pragma omp for schedule(dynamic, 4)
     for (int v = 0; v < view.height; ++v) {
       fn(job, v, links);
-      const int n = ++done;
-      if (progress && omp_get_thread_num() == 0 && n % 16 == 0)
-        progress(0.95 * n / view.height);
+      progress.advance();
     }
   }
 
   LightIndependentImage image(req.width, req.height, cv.k, cv.t_channels);
   shearwarp::warpToFinal(intermediate, view, image);
-  if (progress) progress(1.0);
-  // Numeric failure is reported, never written out.
-  for (int p = 0; p < image.planes(); ++p) {
-    const auto plane = image.planeFloat(p);
-    for (std::size_t i = 0; i < plane.size(); ++i)
-      if (!std::isfinite(plane[i]))
-        throw Error(fmt::format("shearwarp: non-finite value {} in channel {} at pixel ({}, {})",
-                                plane[i], p, i % req.width, i / req.width));
-  }
   return image;
 }
+
+namespace backends {
+BackendEntry shearwarp() {
+  return {ShearWarpRenderer().info(), [] { return std::make_unique<ShearWarpRenderer>(); }, {}, {}};
+}
+}  // namespace backends
 
 }  // namespace svr

@@ -55,15 +55,14 @@ void compositeBand(const SplatList& list, const FootprintTable& table,
 }  // namespace
 
 void compositeDirect(const SplatList& list, const FootprintTable& table, const Bands& bands,
-                     float termination, LightIndependentImage& image, const ProgressFn& progress) {
-  std::atomic<int> done{0};
+                     float termination, LightIndependentImage& image, ProgressCounter& progress) {
+  progress.stage(bands.count);
 #pragma omp parallel for schedule(dynamic)
   for (int b = 0; b < bands.count; ++b) {
     BandState state(image, b * bands.rows, std::min((b + 1) * bands.rows, image.height()),
                     termination);
     compositeBand(list, table, bands.of(b), state);
-    const int n = ++done;
-    if (progress && omp_get_thread_num() == 0) progress(static_cast<double>(n) / bands.count);
+    progress.advance();
   }
 }
 

@@ -5,12 +5,12 @@
 // turns; kept because the harness charts that difference against the sheet mode.
 
 #include "renderers/core/renderer.h"
-#include "renderers/splat/footprint.h"
+#include "renderers/core/splat_footprint.h"
 #include "renderers/splat/splat_list.h"
 
 namespace svr::splat {
 
 void compositeDirect(const SplatList& list, const FootprintTable& table, const Bands& bands,
-                     float termination, LightIndependentImage& image, const ProgressFn& progress);
+                     float termination, LightIndependentImage& image, ProgressCounter& progress);
 
 }  // namespace svr::splat

@@ -127,19 +127,18 @@ void compositeBand(const SplatList& list, const FootprintTable& table,
 
 void compositeSheets(const SplatList& list, const FootprintTable& table, const Bands& bands,
                      double thickness, float termination, LightIndependentImage& image,
-                     const ProgressFn& progress) {
+                     ProgressCounter& progress) {
   const auto splats = list.splats();
   // One sheet lattice for the whole image, so neighbouring bands agree.
   const double first_sheet =
       splats.empty() ? 0.0 : splats.front().depth - table.cutoff() * list.maxDepthSigma();
-  std::atomic<int> done{0};
+  progress.stage(bands.count);
 #pragma omp parallel for schedule(dynamic)
   for (int b = 0; b < bands.count; ++b) {
     BandState state(image, b * bands.rows, std::min((b + 1) * bands.rows, image.height()),
                     termination);
     compositeBand(list, table, bands.of(b), first_sheet, thickness, state);
-    const int n = ++done;
-    if (progress && omp_get_thread_num() == 0) progress(static_cast<double>(n) / bands.count);
+    progress.advance();
   }
 }
 

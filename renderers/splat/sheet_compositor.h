@@ -6,13 +6,13 @@
 // into each other and the result does not depend on the order within a sheet.
 
 #include "renderers/core/renderer.h"
-#include "renderers/splat/footprint.h"
+#include "renderers/core/splat_footprint.h"
 #include "renderers/splat/splat_list.h"
 
 namespace svr::splat {
 
 void compositeSheets(const SplatList& list, const FootprintTable& table, const Bands& bands,
                      double thickness, float termination, LightIndependentImage& image,
-                     const ProgressFn& progress);
+                     ProgressCounter& progress);
 
 }  // namespace svr::splat

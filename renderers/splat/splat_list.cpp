@@ -6,91 +6,47 @@
 #include <utility>
 
 #include "renderers/core/classified_sample.h"
+#include "renderers/core/splat_projection.h"
 
 namespace svr::splat {
 
 SplatList::SplatList(const ClassifiedVolume& cv, const RenderRequest& req,
                      const Projector& projector)
     : cv_(cv), voxels_(SplatVoxels::of(cv)), k_(cv.k), kt_(cv.t_channels) {
-  const Dims& d = cv.dims;
-  const glm::dvec3 centre = 0.5 * glm::dvec3(d[0] - 1, d[1] - 1, d[2] - 1);
-  const Footprint any = projector.footprint(glm::dvec3(0.0));
+  ProjectedVoxels projected = projectVoxels(*voxels_, cv, projector, req.width, req.height);
   const auto voxels = voxels_->voxels();
   const bool any_specular = req.shading.specular > 0.0 &&
                             std::any_of(cv.specular.begin(), cv.specular.end(),
                                         [](float s) { return s > 0.f; });
-
-  // Fixed chunks of the voxel list, projected and shaded in parallel and joined in order:
-  // deterministic for any number of threads.
-  constexpr std::size_t kChunk = 1 << 14;
-  const std::size_t chunks = (voxels.size() + kChunk - 1) / kChunk;
-  std::vector<std::vector<Splat>> slices(chunks);
-  std::vector<std::vector<Footprint>> slice_footprints(chunks);
-#pragma omp parallel for schedule(dynamic)
-  for (std::size_t chunk = 0; chunk < chunks; ++chunk) {
-    auto& out = slices[chunk];
-    const std::size_t end = std::min(voxels.size(), (chunk + 1) * kChunk);
-    for (std::size_t v = chunk * kChunk; v < end; ++v) {
-      const SplatVoxel& voxel = voxels[v];
-      const int x = static_cast<int>(voxel.index % d[0]);
-      const int y = static_cast<int>(voxel.index / d[0] % d[1]);
-      const int z = static_cast<int>(voxel.index / d[0] / d[1]);
-      const glm::dvec3 world = (glm::dvec3(x, y, z) - centre) * cv.spacing;
-      const glm::dvec3 pos = projector.project(world);
-      const Footprint fp = projector.orthographic() ? any : projector.footprint(world);
-      if (pos.z <= 0.0 && !projector.orthographic()) continue;  // behind the eye
-      if (pos.x + fp.half_w < 0 || pos.x - fp.half_w > req.width || pos.y + fp.half_h < 0 ||
-          pos.y - fp.half_h > req.height)
-        continue;
-
-      // The splat carries its kernel's worth of emission, so its shade is the mean of the
-      // shade over the voxel's cell — the raycaster's Phong at the cell's 8 corners — not the
-      // shade at its centre: near a boundary those differ, and the centre alone is too bright.
-      const glm::dvec3 view = projector.towardsEye(world);
-      const glm::dvec3 light = req.light_direction ? *req.light_direction : view;
-      PhongSetup setup(req.shading, light, glm::normalize(light + view));
-      if (!any_specular) setup.specular = 0.f;
-      float shade = 0.f, highlight = 0.f;
-      for (int c = 0; c < 8; ++c) {
-        float g[3];
-        voxels_->gradientAtNode(x + (c & 1), y + ((c >> 1) & 1), z + ((c >> 2) & 1), g);
-        const PhongTerms t = phong(setup, g);
-        shade += t.shade;
-        highlight += t.highlight;
-      }
-      out.push_back({static_cast<float>(pos.x), static_cast<float>(pos.y),
-                     static_cast<float>(pos.z), voxel.entry, voxel.frac, shade * 0.125f,
-                     highlight * 0.125f});
-      if (!projector.orthographic()) slice_footprints[chunk].push_back(fp);
+  const Dims& d = cv.dims;
+  const std::size_t n = projected.ids.size();
+  splats_.resize(n);
+#pragma omp parallel for schedule(dynamic, 4096)
+  for (std::size_t i = 0; i < n; ++i) {
+    const SplatVoxel& voxel = voxels[projected.ids[i]];
+    const int x = static_cast<int>(voxel.index % d[0]);
+    const int y = static_cast<int>(voxel.index / d[0] % d[1]);
+    const int z = static_cast<int>(voxel.index / d[0] / d[1]);
+    // The splat carries its kernel's worth of emission, so its shade is the mean of the
+    // shade over the voxel's cell — the raycaster's Phong at the cell's 8 corners — not the
+    // shade at its centre: near a boundary those differ, and the centre alone is too bright.
+    const glm::dvec3 view = projector.towardsEye(voxelWorld(cv, voxel.index));
+    const glm::dvec3 light = req.light_direction ? *req.light_direction : view;
+    PhongSetup setup(req.shading, light, glm::normalize(light + view));
+    if (!any_specular) setup.specular = 0.f;
+    float shade = 0.f, highlight = 0.f;
+    for (int c = 0; c < 8; ++c) {
+      float g[3];
+      voxels_->gradientAtNode(x + (c & 1), y + ((c >> 1) & 1), z + ((c >> 2) & 1), g);
+      const PhongTerms t = phong(setup, g);
+      shade += t.shade;
+      highlight += t.highlight;
     }
+    splats_[i] = {projected.position[i].x, projected.position[i].y, projected.depth[i],
+                  voxel.entry, voxel.frac, shade * 0.125f, highlight * 0.125f};
   }
-  std::size_t total = 0;
-  for (const auto& s : slices) total += s.size();
-  std::vector<Splat> joined;
-  std::vector<Footprint> joined_fp;
-  joined.reserve(total);
-  for (std::size_t z = 0; z < chunks; ++z) {
-    joined.insert(joined.end(), slices[z].begin(), slices[z].end());
-    std::vector<Splat>().swap(slices[z]);
-    joined_fp.insert(joined_fp.end(), slice_footprints[z].begin(), slice_footprints[z].end());
-  }
-  // Front to back; ties broken by voxel order, so the order never depends on threads.
-  std::vector<std::pair<float, std::uint32_t>> order(total);
-  for (std::size_t i = 0; i < total; ++i)
-    order[i] = {joined[i].depth, static_cast<std::uint32_t>(i)};
-  std::sort(order.begin(), order.end());
-  splats_.resize(total);
-  for (std::size_t i = 0; i < total; ++i) splats_[i] = joined[order[i].second];
-  if (projector.orthographic()) {
-    footprints_ = {any};
-    max_depth_sigma_ = any.depth_sigma;
-  } else {
-    footprints_.resize(total);
-    for (std::size_t i = 0; i < total; ++i) {
-      footprints_[i] = joined_fp[order[i].second];
-      max_depth_sigma_ = std::max(max_depth_sigma_, footprints_[i].depth_sigma);
-    }
-  }
+  footprints_ = std::move(projected.footprints);
+  for (const Footprint& fp : footprints_) max_depth_sigma_ = std::max(max_depth_sigma_, fp.depth_sigma);
 }
 
 void SplatList::coefficients(const Splat& s, SplatCoefficients& out) const {

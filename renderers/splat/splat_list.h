@@ -12,8 +12,8 @@
 
 #include "renderers/core/classification.h"
 #include "renderers/core/renderer.h"
-#include "renderers/splat/footprint.h"
-#include "renderers/splat/splat_voxels.h"
+#include "renderers/core/splat_footprint.h"
+#include "renderers/core/splat_voxels.h"
 
 namespace svr::splat {
 

@@ -9,7 +9,7 @@
 #include "renderers/core/procedural_volume.h"
 #include "renderers/core/scene_model.h"
 #include "renderers/raycast/raycast_renderer.h"
-#include "renderers/splat/footprint.h"
+#include "renderers/core/splat_footprint.h"
 #include "renderers/splat/splat_renderer.h"
 #include "spectral/error.h"
 #include "spectral/image_difference.h"

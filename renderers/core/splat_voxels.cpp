@@ -1,4 +1,4 @@
-#include "renderers/splat/splat_voxels.h"
+#include "renderers/core/splat_voxels.h"
 
 #include <algorithm>
 #include <cmath>

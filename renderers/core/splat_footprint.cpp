@@ -1,4 +1,4 @@
-#include "renderers/splat/footprint.h"
+#include "renderers/core/splat_footprint.h"
 
 #include <algorithm>
 #include <cmath>

@@ -1,0 +1,36 @@
+#pragma once
+// svr's subcommands. Each *_command.cpp defines its own: name, one-line help, and a function
+// that adds its flags to a CLI11 subcommand and sets the callback that runs it. commands.cpp
+// holds the one list of them (as renderers/registry.cpp does for backends), and svr_main.cpp
+// only dispatches: adding a command is its file plus one line in that list.
+
+#include <functional>
+#include <string>
+#include <vector>
+
+namespace CLI {
+class App;
+}
+
+namespace svr {
+
+// What every command sees: the global flags, and where it leaves its exit status.
+struct CommandContext {
+  std::string data_dir;
+  int status = 0;
+};
+
+struct CommandEntry {
+  std::string name, help;
+  // Adds the flags to `sub` and sets sub's callback. The options live in the closure, so they
+  // last as long as the App.
+  std::function<void(CLI::App& sub, CommandContext& context)> define;
+};
+
+const std::vector<CommandEntry>& commandEntries();
+
+// An image size given on the command line: the scene file's image.width/height range, checked
+// before any loading or rendering ("render: --width 0 is outside 1..16384").
+void checkImageSize(const std::string& command, const std::string& flag, int value);
+
+}  // namespace svr

@@ -1,0 +1,56 @@
+#include "renderers/core/renderer.h"
+
+#include <fmt/format.h>
+
+#include <cmath>
+
+#include "spectral/error.h"
+
+namespace svr {
+
+std::optional<std::string> unsupportedBy(const BackendInfo& backend, const Camera& camera, int k,
+                                         int t_channels) {
+  const BackendCapabilities& s = backend.supports;
+  if (!s.perspective && !camera.orthographic())
+    return fmt::format("{} renders orthographic cameras only (the camera has fov {}°)",
+                       backend.name, camera.fov_degrees);
+  if (k > s.max_channels)
+    return fmt::format("{}: {} channels exceed the supported {}", backend.name, k, s.max_channels);
+  if (t_channels > 1 && !s.spectral_transmittance)
+    return fmt::format("{} supports scalar transmittance only ({} channels asked)", backend.name,
+                       t_channels);
+  return std::nullopt;
+}
+
+LightIndependentImage Renderer::render(const RenderRequest& request,
+                                       const ProgressFn& progress) const {
+  const BackendInfo& backend = info();
+  if (const auto why = unsupportedBy(backend, request.camera, request.volume.k,
+                                     request.volume.t_channels))
+    throw Error(*why);
+  const BackendOptions options = readBackendOptions(backend.options, request.options,
+                                                    backend.name, request.options_source);
+  const ClassifiedVolume& cv = request.volume;
+  checkMemoryBudget(
+      LightIndependentImage::bytesFor(request.width, request.height, cv.k, cv.t_channels) +
+          workingBytes(request),
+      request.memory_budget,
+      fmt::format("{}: a {}×{} image of {} + {} channels", backend.name, request.width,
+                  request.height, cv.k, cv.t_channels));
+  ProgressCounter counter(progress);
+  LightIndependentImage image = renderImpl(request, options, counter);
+  counter.set(1.0);
+  // Numeric failure is reported, never written out.
+  for (int p = 0; p < image.planes(); ++p) {
+    const auto plane = image.planeFloat(p);
+    for (std::size_t i = 0; i < plane.size(); ++i)
+      if (!std::isfinite(plane[i]))
+        throw Error(fmt::format("{}: non-finite value {} in {} channel {} at pixel ({}, {})",
+                                backend.name, plane[i], p < request.volume.k ? "S" : "T",
+                                p < request.volume.k ? p : p - request.volume.k,
+                                i % image.width(), i / image.width()));
+  }
+  return image;
+}
+
+}  // namespace svr

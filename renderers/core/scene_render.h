@@ -1,0 +1,21 @@
+#pragma once
+// One way to turn a Scene into a render, used by the harness, the tests and the benches alike:
+// the classification options the scene asks for, and the request that renders its classified
+// volume with the scene's camera, size, shading, light direction, termination and options.
+// Callers change what they vary on the returned values (a bench its image size, the reference
+// its termination) instead of writing the request out again.
+
+#include "renderers/core/classification.h"
+#include "renderers/core/renderer.h"
+#include "renderers/core/scene.h"
+#include "spectral/colour_model.h"
+
+namespace svr {
+
+ClassificationOptions classificationOptions(const Scene& scene);
+ClassifiedVolume classifyScene(const Scene& scene, const ColourModel& model);
+
+// The request for this scene (options_source names the scene file's render.options).
+RenderRequest sceneRequest(const Scene& scene, const ClassifiedVolume& classified);
+
+}  // namespace svr

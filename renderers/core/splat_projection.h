@@ -1,0 +1,38 @@
+#pragma once
+// The view-dependent half of splatting that both splat backends share (splat on the CPU, gl on
+// OpenGL): every voxel of the classification's splat list projected to the image with the
+// Projector, culled to the image (and to the front of the eye), and put in depth order front
+// to back, ties broken by list order, so the order never depends on threads and both backends
+// composite the same splats in the same order.
+
+#include <cstdint>
+#include <vector>
+
+#include <glm/vec2.hpp>
+
+#include "renderers/core/classification.h"
+#include "renderers/core/splat_footprint.h"
+#include "renderers/core/splat_voxels.h"
+
+namespace svr::splat {
+
+struct ProjectedVoxels {
+  std::vector<std::uint32_t> ids;   // indices into SplatVoxels::voxels(), front to back
+  std::vector<glm::vec2> position;  // image position (pixels) of ids[i]
+  std::vector<float> depth;         // along the view axis (world units), ascending
+  std::vector<Footprint> footprints;  // one (orthographic) or one per id
+  const Footprint& footprint(std::size_t i) const {
+    return footprints.size() == 1 ? footprints[0] : footprints[i];
+  }
+};
+
+// World position of voxel `index` (x + y·nx + z·nx·ny), the volume centred on the origin.
+glm::dvec3 voxelWorld(const ClassifiedVolume& cv, std::uint32_t index);
+
+ProjectedVoxels projectVoxels(const SplatVoxels& voxels, const ClassifiedVolume& cv,
+                              const Projector& projector, int width, int height);
+
+// Stable sort of `ids` by key[id] ascending (LSD radix on the float bits; −0 sorts with +0).
+void sortByDepth(std::vector<std::uint32_t>& ids, const std::vector<float>& key);
+
+}  // namespace svr::splat
