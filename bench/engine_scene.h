@@ -9,6 +9,7 @@
 #include "renderers/core/classification.h"
 #include "renderers/core/scene.h"
 #include "renderers/core/scene_model.h"
+#include "renderers/core/scene_render.h"
 #include "spectral/colorimetry.h"
 #include "spectral/data_dir.h"
 #include "spectral/spectrum_library.h"
@@ -29,11 +30,14 @@ inline const EngineBenchScene& engineBenchScene() {
 // The engine classified for one model with the scene's step and bins: what a viewer holds
 // while only the view changes.
 inline ClassifiedVolume classifyEngine(const ColourModel& model) {
-  const EngineBenchScene& s = engineBenchScene();
-  ClassificationOptions options;
-  options.step_world = s.scene.stepWorld();
-  options.bins = s.scene.bins;
-  return classify(s.scene.volume, s.scene.transfer_function, model, options);
+  return classifyScene(engineBenchScene().scene, model);
+}
+
+// The engine's request at size × size pixels.
+inline RenderRequest engineRequest(const ClassifiedVolume& cv, int size) {
+  RenderRequest request = sceneRequest(engineBenchScene().scene, cv);
+  request.width = request.height = size;
+  return request;
 }
 
 // The model and classification for a model name, built once per binary and kept.

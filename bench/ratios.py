@@ -21,23 +21,22 @@ def config(name):
 
 runs = {config(b["name"]): b for b in json.load(open(sys.argv[1]))["benchmarks"]
         if b.get("run_type", "iteration") == "iteration"}
-frames = {n: b for n, b in runs.items() if n.startswith("Frame/")}
-if frames:
-    print(f"{'run':<44} {'ms/frame':>9} {'/ raycast':>9}")
-    for name, b in frames.items():
-        parts = name.split("/")
-        ray = runs.get("/".join(parts[:-1] + ["raycast"]))
-        ratio = b["real_time"] / ray["real_time"] if ray else float("nan")
-        print(f"{name:<44} {b['real_time']:9.1f} {ratio:9.2f}")
-    sys.exit(0)
-raycast = {n: b for n, b in runs.items() if n.startswith("Raycast/")}
-if raycast:
-    print(f"{'run':<34} {'ms/frame':>9} {'/ rgb':>7}")
-    for name, b in raycast.items():
-        parts = name.split("/")
-        rgb = runs.get("/".join(parts[:-1] + ["rgb"]))
-        ratio = b["real_time"] / rgb["real_time"] if rgb else float("nan")
-        print(f"{name:<34} {b['real_time']:9.1f} {ratio:7.2f}")
+
+
+def ratio_table(prefix, baseline, width):
+    """Time per frame of every run named PREFIX/…/X, and its ratio to PREFIX/…/BASELINE."""
+    table = {n: b for n, b in runs.items() if n.startswith(prefix)}
+    if not table:
+        return False
+    print(f"{'run':<{width}} {'ms/frame':>9} {'/ ' + baseline:>9}")
+    for name, b in table.items():
+        base = runs.get("/".join(name.split("/")[:-1] + [baseline]))
+        ratio = b["real_time"] / base["real_time"] if base else float("nan")
+        print(f"{name:<{width}} {b['real_time']:9.1f} {ratio:9.2f}")
+    return True
+
+
+if ratio_table("Frame/", "raycast", 44) or ratio_table("Raycast/", "rgb", 34):
     sys.exit(0)
 print(f"{'config':<18} {'relight fps':>12} {'stream fps':>12} {'relight/stream':>15}  {'GB/s relight':>12}")
 for name, b in runs.items():

@@ -21,10 +21,9 @@ void raycast(benchmark::State& state, int size, const std::string& model_name) {
   const SceneModel model = makeSceneModel(model_name, s.scene, s.observer);
   const ClassifiedVolume cv = classifyEngine(*model.model);
   const auto renderer = makeRenderer("raycast");
-  RenderRequest request{cv,   s.scene.camera,      size, size, s.scene.shading, s.scene.light_direction,
-                        s.scene.termination, true, s.scene.renderer_options};
+  const RenderRequest request = engineRequest(cv, size);
   for (auto _ : state) {
-    auto image = renderer->render(request, nullptr);
+    auto image = renderer->render(request);
     benchmark::DoNotOptimize(image.planeFloat(0).data());
   }
   state.SetItemsProcessed(state.iterations());

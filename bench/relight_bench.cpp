@@ -3,9 +3,9 @@
 // that encodes sRGB itself); StreamRead/<size>/<k>/<float|half> reads the same
 // bytes and does nothing else. Both report bytes/s and frames/s (items/s), so
 // relight time / streaming-read time comes from one run (bench/ratios.py prints it).
-// RelightGL/<size>/<k> is the same 8-bit sRGB frame through the gl backend's fragment shader
-// (OSMesa's llvmpipe here): the image uploaded once, then per frame the 3×k matrix as uniforms,
-// one draw and the read-back of the RGB bytes.
+// RelightOn/<backend>/<size>/<k> is the same 8-bit sRGB frame through every relighter a backend
+// offers in the registry (gl: its fragment shader, on OSMesa's llvmpipe here): the image uploaded
+// once, then per frame the 3×k matrix as uniforms, one draw and the read-back of the RGB bytes.
 #include <benchmark/benchmark.h>
 #include <fmt/format.h>
 
@@ -19,9 +19,7 @@
 #include "spectral/data_dir.h"
 #include "spectral/post_illumination.h"
 #include "spectral/spectrum_library.h"
-#ifdef SVR_HAVE_GL
-#include "renderers/gl/gl_relighter.h"
-#endif
+#include "renderers/registry.h"
 
 namespace svr {
 namespace {
@@ -85,24 +83,23 @@ std::uint64_t sumRows(const LightIndependentImage& image, int k) {
   return total;
 }
 
-#ifdef SVR_HAVE_GL
-void relightGl(benchmark::State& state, int size, int k) {
+// A backend's own relighter (the registry's; gl: a fragment shader), same image and light.
+void relightOn(benchmark::State& state, const std::string& backend, int size, int k) {
   const auto image = makeImage(size, k, SampleStorage::kFloat);
   const auto model = makeSpectralModel(observer(), k);
   const auto lib = SpectrumLibrary::load(defaultDataDir(), WavelengthGrid::standard());
   PostIlluminator post(*model);
   post.setLight(model->project(observer().unitLuminance(lib.get("D65"))));
-  GlRelighter gl;
-  gl.setImage(image);
+  const auto device = makeRelighter(backend);
+  device->setImage(image);
   std::vector<std::uint8_t> out(3 * image.pixels());
   for (auto _ : state) {
-    gl.relightSrgb8(post.foldedMatrix(image, RelitSpace::kLinearSrgb), out);
+    device->relightSrgb8(post.foldedMatrix(image, RelitSpace::kLinearSrgb), out);
     benchmark::DoNotOptimize(out.data());
   }
   state.SetBytesProcessed(state.iterations() * image.bytes());
   state.SetItemsProcessed(state.iterations());
 }
-#endif
 
 void streamRead(benchmark::State& state, int size, int k, SampleStorage storage) {
   const auto image = makeImage(size, k, storage);
@@ -134,14 +131,15 @@ const bool registered = [] {
             ->UseRealTime()
             ->Unit(benchmark::kMicrosecond);
       }
-#ifdef SVR_HAVE_GL
-  for (int size : {400, 800})
-    for (int k : {3, 4, 6, 8, 16})
-      benchmark::RegisterBenchmark(fmt::format("RelightGL/{}/{}", size, k).c_str(), relightGl,
-                                   size, k)
-          ->UseRealTime()
-          ->Unit(benchmark::kMicrosecond);
-#endif
+  for (const BackendEntry& entry : backendEntries())
+    if (entry.make && entry.relighter)
+      for (int size : {400, 800})
+        for (int k : {3, 4, 6, 8, 16})
+          benchmark::RegisterBenchmark(
+              fmt::format("RelightOn/{}/{}/{}", entry.info.name, size, k).c_str(), relightOn,
+              entry.info.name, size, k)
+              ->UseRealTime()
+              ->Unit(benchmark::kMicrosecond);
   // The same frame through every instruction set this CPU has, to choose between them.
   for (KernelIsa isa : availableKernelIsas())
     for (auto storage : {SampleStorage::kFloat, SampleStorage::kHalf})

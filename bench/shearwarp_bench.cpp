@@ -23,22 +23,15 @@
 namespace svr {
 namespace {
 
-RenderRequest engineRequest(const ClassifiedVolume& cv, int size) {
-  const Scene& scene = engineBenchScene().scene;
-  return {cv,   scene.camera,      size, size, scene.shading, scene.light_direction,
-          scene.termination, true, scene.renderer_options};
-}
-
 void frame(benchmark::State& state, int size, const std::string& model_name, bool shearwarp) {
   const SceneModel model = makeSceneModel(model_name, engineBenchScene().scene, engineBenchScene().observer);
   const ClassifiedVolume cv = classifyEngine(*model.model);
   const RenderRequest request = engineRequest(cv, size);
-  const shearwarp::RleVolume encoded(cv);
-  encoded.buildAll();
+  shearwarp::RleVolume::of(cv)->buildAll();  // cached on cv: every frame reuses it
   const ShearWarpRenderer sw;
   const RaycastRenderer rc;
   for (auto _ : state) {
-    auto image = shearwarp ? sw.render(encoded, request, nullptr) : rc.render(request, nullptr);
+    auto image = shearwarp ? sw.render(request) : rc.render(request);
     benchmark::DoNotOptimize(image.planeFloat(0).data());
   }
   state.SetItemsProcessed(state.iterations());

@@ -26,9 +26,9 @@ inline Camera engineCamera(double azimuth_deg) {
 }
 
 inline RenderRequest engineRequest(const ClassifiedVolume& cv, double azimuth_deg, int size) {
-  const Scene& s = engineBenchScene().scene;
-  return {cv,         engineCamera(azimuth_deg), size, size, s.shading, s.light_direction,
-          s.termination, true,                   s.renderer_options};
+  RenderRequest request = engineRequest(cv, size);
+  request.camera = engineCamera(azimuth_deg);
+  return request;
 }
 
 // The transfer function at the 256 values of the 8-bit engine volume, from the rgb

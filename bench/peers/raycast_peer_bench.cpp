@@ -30,7 +30,7 @@ void raycastFrame(benchmark::State& state, const std::string& model, int size, d
   const auto renderer = makeRenderer("raycast");
   const RenderRequest request = engineRequest(cv, azimuth, size);
   for (auto _ : state) {
-    auto image = renderer->render(request, nullptr);
+    auto image = renderer->render(request);
     benchmark::DoNotOptimize(image.planeFloat(0).data());
   }
 }

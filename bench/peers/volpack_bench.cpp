@@ -215,16 +215,6 @@ VolPackScene& volpackScene(int channels) {
   return *scene;
 }
 
-const shearwarp::RleVolume& encodedEngine(const std::string& model) {
-  static std::map<std::string, std::unique_ptr<shearwarp::RleVolume>> encoded;
-  auto& e = encoded[model];
-  if (!e) {
-    e = std::make_unique<shearwarp::RleVolume>(engineClassified(model));
-    e->buildAll();
-  }
-  return *e;
-}
-
 void volpackFrame(benchmark::State& state, int channels, int size, double azimuth) {
   VolPackScene& vp = volpackScene(channels);
   vp.setView(engineCamera(azimuth), size);
@@ -241,10 +231,10 @@ void volpackFrame(benchmark::State& state, int channels, int size, double azimut
 
 void shearwarpFrame(benchmark::State& state, const std::string& model, int size, double azimuth) {
   const ClassifiedVolume& cv = engineClassified(model);
-  const shearwarp::RleVolume& encoded = encodedEngine(model);
+  shearwarp::RleVolume::of(cv)->buildAll();  // cached on the classification, as in a viewer
   const ShearWarpRenderer renderer;
   const RenderRequest request = engineRequest(cv, azimuth, size);
-  const LightIndependentImage first = renderer.render(encoded, request, nullptr);
+  const LightIndependentImage first = renderer.render(request);
   if (!imagesDir.empty() && model == "rgb") {
     std::vector<unsigned char> rgb(static_cast<std::size_t>(size) * size * 3);
     for (int c = 0; c < 3; ++c) {
@@ -255,7 +245,7 @@ void shearwarpFrame(benchmark::State& state, const std::string& model, int size,
              rgb.data(), /*bottom_up=*/false);
   }
   for (auto _ : state) {
-    auto image = renderer.render(encoded, request, nullptr);
+    auto image = renderer.render(request);
     benchmark::DoNotOptimize(image.planeFloat(0).data());
   }
 }

@@ -33,11 +33,15 @@
 namespace svr {
 namespace {
 
+// The built backends that need no GL context (those go in only with --gl, up to gl_max_image).
 std::vector<std::string> cpuBackends() {
-  std::vector<std::string> names = rendererNames();
-  std::erase(names, "gl");
+  std::vector<std::string> names;
+  for (const BackendEntry& e : backendEntries())
+    if (e.make && !e.info.supports.needs_gl) names.push_back(e.info.name);
   return names;
 }
+
+bool needsGl(const std::string& backend) { return backendEntry(backend).info.supports.needs_gl; }
 
 struct Options {
   std::vector<int> volume_sizes{64, 128, 256, 512};
@@ -124,12 +128,11 @@ void frame(benchmark::State& state, const std::string& scene_name, const std::st
   const Loaded& l = load(scene_name, model);
   const Scene& s = *l.scene;
   const auto renderer = makeRenderer(backend);
-  const RenderRequest request{*l.classified, s.camera,      size, size,
-                              s.shading,     s.light_direction, s.termination, true,
-                              s.renderer_options};
-  renderer->render(request, nullptr);  // builds what backends cache on the classification
+  RenderRequest request = sceneRequest(s, *l.classified);
+  request.width = request.height = size;
+  renderer->render(request);  // builds what backends cache on the classification
   for (auto _ : state) {
-    auto image = renderer->render(request, nullptr);
+    auto image = renderer->render(request);
     benchmark::DoNotOptimize(image.planeFloat(0).data());
   }
   state.counters["voxels"] = static_cast<double>(s.volume.voxelCount());
@@ -158,7 +161,7 @@ void registerAll(const Options& o) {
   for (const char* model : models)
     for (int size : o.image_sizes)
       for (const std::string& b : o.backends)
-        if (b != "gl" || size <= o.gl_max_image)
+        if (!needsGl(b) || size <= o.gl_max_image)
           add(fmt::format("Image/engine/{}/{}/{}", size, model, b), "engine", model, b, size);
 }
 

@@ -59,14 +59,7 @@ TEST(DesignedScenes, UnderEachLightOnlyItsMaterialShows) {
       Scene alone = scene;
       for (std::size_t o = 0; o < 4; ++o)
         if (o != m) alone.transfer_function.materials[o].extinction = 0.0;
-      ClassificationOptions options;
-      options.step_world = alone.stepWorld();
-      const ClassifiedVolume cv =
-          classify(alone.volume, alone.transfer_function, *model, options);
-      const RenderRequest request{cv,   alone.camera,        alone.width, alone.height,
-                                  alone.shading, alone.light_direction, alone.termination,
-                                  true, alone.renderer_options};
-      const auto image = renderer->render(request, nullptr);
+      const auto image = test::render(*renderer, alone, *model);
       for (std::size_t l = 0; l < 4; ++l) {
         SCOPED_TRACE(backend + " " + scene.transfer_function.materials[m].name + " under " +
                      scene.lights[l].name);
@@ -143,11 +136,8 @@ TEST(DesignedScenes, EnginePaletteProjectsOntoTheScenesFactor6WithinHalfAUnit) {
   const auto spectral = makeSpectralModel(observer, 81);
   const auto renderer = makeRenderer("raycast");
   auto render = [&](const ColourModel& m) {
-    const ClassifiedVolume cv = classify(scene.volume, scene.transfer_function, m, options);
-    return renderer->render({cv, scene.camera, scene.width, scene.height, scene.shading,
-                             scene.light_direction, scene.termination, true,
-                             scene.renderer_options},
-                            nullptr);
+    return test::render(*renderer, scene,
+                        classify(scene.volume, scene.transfer_function, m, options));
   };
   const auto a = render(*factor6.model), b = render(*spectral);
   for (const auto& named : scene.lights) {

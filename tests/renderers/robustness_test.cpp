@@ -22,14 +22,7 @@ namespace {
 
 LightIndependentImage renderWith(const Scene& scene, const ColourModel& model,
                                  const std::string& backend) {
-  ClassificationOptions options;
-  options.step_world = scene.stepWorld();
-  options.bins = scene.bins;
-  const ClassifiedVolume cv = classify(scene.volume, scene.transfer_function, model, options);
-  RenderRequest request{cv,           scene.camera,          scene.width,
-                        scene.height, scene.shading,         scene.light_direction,
-                        scene.termination, true,             scene.renderer_options};
-  return makeRenderer(backend)->render(request, nullptr);
+  return test::render(*makeRenderer(backend), scene, model);
 }
 
 // The image's bytes, plane by plane: equality here is bit-for-bit equality of the render.

@@ -43,4 +43,18 @@ Scene phantomScene() {
   return s;
 }
 
+LightIndependentImage render(const Renderer& renderer, const Scene& scene,
+                             const ClassifiedVolume& classified,
+                             const std::optional<nlohmann::json>& options) {
+  RenderRequest request = sceneRequest(scene, classified);
+  if (options) request.options = *options;
+  return renderer.render(request);
+}
+
+LightIndependentImage render(const Renderer& renderer, const Scene& scene,
+                             const ColourModel& model,
+                             const std::optional<nlohmann::json>& options) {
+  return render(renderer, scene, classifyScene(scene, model), options);
+}
+
 }  // namespace svr::test

@@ -4,7 +4,11 @@
 
 #include <string>
 
+#include <optional>
+
+#include "renderers/core/renderer.h"
 #include "renderers/core/scene.h"
+#include "renderers/core/scene_render.h"
 #include "spectral/colorimetry.h"
 #include "spectral/spectrum_library.h"
 
@@ -21,5 +25,15 @@ Scene slabScene(double sigma, const std::string& absorption, double step_voxels)
 
 // The procedural phantom with four materials (one spectral absorber, one x-ray), 48×48 pixels.
 Scene phantomScene();
+
+// Renders the scene's classified volume through sceneRequest; `options`, when given, replace
+// the scene's render.options.
+LightIndependentImage render(const Renderer& renderer, const Scene& scene,
+                             const ClassifiedVolume& classified,
+                             const std::optional<nlohmann::json>& options = std::nullopt);
+// The same after classifyScene with this model.
+LightIndependentImage render(const Renderer& renderer, const Scene& scene,
+                             const ColourModel& model,
+                             const std::optional<nlohmann::json>& options = std::nullopt);
 
 }  // namespace svr::test

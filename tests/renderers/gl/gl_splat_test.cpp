@@ -11,6 +11,7 @@
 #include "renderers/core/scene_model.h"
 #include "renderers/gl/gl_splat_renderer.h"
 #include "renderers/raycast/raycast_renderer.h"
+#include "renderers/core/splat_settings.h"
 #include "renderers/splat/splat_renderer.h"
 #include "spectral/componentwise_model.h"
 #include "spectral/error.h"
@@ -20,24 +21,14 @@
 namespace svr {
 namespace {
 
-ClassifiedVolume classifyScene(const Scene& scene, const ColourModel& model) {
-  ClassificationOptions options;
-  options.step_world = scene.stepWorld();
-  options.bins = scene.bins;
-  return classify(scene.volume, scene.transfer_function, model, options);
-}
-
 LightIndependentImage renderClassified(const Scene& scene, const ClassifiedVolume& cv,
                                        const Renderer& renderer, const nlohmann::json& options) {
-  RenderRequest request{cv,           scene.camera,      scene.width, scene.height,
-                        scene.shading, scene.light_direction, scene.termination, true,
-                        options};
-  return renderer.render(request, nullptr);
+  return test::render(renderer, scene, cv, options);
 }
 
 LightIndependentImage renderScene(const Scene& scene, const ColourModel& model,
                                   const Renderer& renderer, const nlohmann::json& options) {
-  return renderClassified(scene, classifyScene(scene, model), renderer, options);
+  return test::render(renderer, scene, model, options);
 }
 
 // The same options for both splatting backends.
@@ -218,21 +209,24 @@ TEST(GlSplat, FootprintsWiderThanAPointAreQuads) {
 }
 
 TEST(GlSplat, BadOptionsNameTheKeyAndValue) {
-  const auto expectError = [](const nlohmann::json& options, const std::string& part) {
+  const auto settingsOf = [](const nlohmann::json& options) {
+    return splat::splatSettings(readBackendOptions(splat::splatOptionSpecs(), options, "gl"));
+  };
+  const auto expectError = [&](const nlohmann::json& options, const std::string& part) {
     try {
-      readSplatSettings(options, "gl");
+      settingsOf(options);
       FAIL() << options.dump();
     } catch (const Error& e) {
       EXPECT_NE(std::string(e.what()).find(part), std::string::npos) << e.what();
     }
   };
-  expectError({{"gl", {{"mode", "blend"}}}}, "gl.mode: 'blend' is not sheet or direct");
+  expectError({{"gl", {{"mode", "blend"}}}}, "gl.mode: 'blend' is not one of sheet, direct");
   expectError({{"gl", {{"radius", -1}}}}, "gl.radius");
   expectError({{"gl", {{"sheet", 0.05}}}}, "gl.sheet");
   expectError({{"gl", {{"sigmma", 0.7}}}}, "sigmma");
-  EXPECT_NO_THROW(readSplatSettings({{"splat", {{"anything", 1}}}}, "gl"));
-  EXPECT_EQ(readSplatSettings({{"gl", {{"mode", "direct"}}}}, "gl").mode,
-            SplatSettings::Mode::kDirect);
+  EXPECT_NO_THROW(settingsOf({{"splat", {{"anything", 1}}}}));
+  EXPECT_EQ(settingsOf({{"gl", {{"mode", "direct"}}}}).mode,
+            splat::SplatSettings::Mode::kDirect);
 }
 
 // An image wider than GL_MAX_TEXTURE_SIZE is refused, naming the limit, before anything is

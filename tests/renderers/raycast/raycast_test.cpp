@@ -20,15 +20,12 @@ LightIndependentImage renderScene(const Scene& scene, const ColourModel& model,
                                   const Renderer& renderer,
                                   std::optional<Eigen::VectorXd> baked = std::nullopt,
                                   bool skipping = true) {
-  ClassificationOptions options;
-  options.step_world = scene.stepWorld();
-  options.bins = scene.bins;
+  ClassificationOptions options = classificationOptions(scene);
   options.baked_light = baked;
   const ClassifiedVolume cv = classify(scene.volume, scene.transfer_function, model, options);
-  RenderRequest request{cv,           scene.camera,          scene.width,
-                        scene.height, scene.shading,         scene.light_direction,
-                        scene.termination, skipping,         scene.renderer_options};
-  return renderer.render(request, nullptr);
+  RenderRequest request = sceneRequest(scene, cv);
+  request.empty_space_skipping = skipping;
+  return renderer.render(request);
 }
 
 // Voxels of the slab's centre column: the line integral of the trilinear field through it.

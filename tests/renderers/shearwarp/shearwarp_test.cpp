@@ -18,27 +18,6 @@
 namespace svr {
 namespace {
 
-ClassifiedVolume classifyScene(const Scene& scene, const ColourModel& model) {
-  ClassificationOptions options;
-  options.step_world = scene.stepWorld();
-  options.bins = scene.bins;
-  return classify(scene.volume, scene.transfer_function, model, options);
-}
-
-LightIndependentImage renderWith(const Renderer& renderer, const Scene& scene,
-                                 const ClassifiedVolume& cv) {
-  const RenderRequest request{cv,           scene.camera,      scene.width,
-                              scene.height, scene.shading,     scene.light_direction,
-                              scene.termination, true,         scene.renderer_options};
-  return renderer.render(request, nullptr);
-}
-
-LightIndependentImage renderScene(const Renderer& renderer, const Scene& scene,
-                                  const ColourModel& model) {
-  const ClassifiedVolume cv = classifyScene(scene, model);
-  return renderWith(renderer, scene, cv);
-}
-
 double slabVoxels(const Scene& scene) {
   const auto& d = scene.volume.dims();
   double n = 0;
@@ -57,7 +36,7 @@ TEST(ShearWarp, SlabTransmittanceIsExpMinusSigmaD) {
     scene.camera = Camera::orbit(20.0, elevation, 200.0, 0.0, 20.0);
     const double d = slabVoxels(scene) * scene.volume.spacing().z /
                      std::sin(elevation * M_PI / 180.0);
-    const auto img = renderScene(ShearWarpRenderer(), scene, *model);
+    const auto img = test::render(ShearWarpRenderer(), scene, *model);
     ASSERT_EQ(img.transmittanceChannels(), 1);
     EXPECT_NEAR(img.transmittance(0, 16, 16), std::exp(-sigma * d), 2e-5) << elevation;
     EXPECT_NEAR(img.transmittance(0, 5, 27), std::exp(-sigma * d), 2e-5) << elevation;
@@ -69,7 +48,7 @@ TEST(ShearWarp, SpectralSlabTransmittancePerChannel) {
   Scene scene = test::slabScene(0.05, "ColorChecker/cyan", 0.125);
   scene.camera = Camera::orbit(30.0, 55.0, 200.0, 0.0, 20.0);
   const double d = slabVoxels(scene) / std::sin(55.0 * M_PI / 180.0);
-  const auto img = renderScene(ShearWarpRenderer(), scene, *model);
+  const auto img = test::render(ShearWarpRenderer(), scene, *model);
   ASSERT_EQ(img.transmittanceChannels(), 81);
   const Eigen::VectorXd a = test::rendererLibrary().get("ColorChecker/cyan").values();
   const Eigen::VectorXd shape = a / a.mean();
@@ -88,8 +67,8 @@ TEST(ShearWarp, SphereChordsMatchTheClosedForm) {
   scene.width = scene.height = 64;
   scene.camera = Camera::orbit(30.0, 20.0, 200.0, 0.0, 48.0);
   const ClassifiedVolume cv = classifyScene(scene, *model);
-  const auto sw = renderWith(ShearWarpRenderer(), scene, cv);
-  const auto rc = renderWith(RaycastRenderer(), scene, cv);
+  const auto sw = test::render(ShearWarpRenderer(), scene, cv);
+  const auto rc = test::render(RaycastRenderer(), scene, cv);
   const double pixel = 48.0 / 64;
   double worst_sw = 0, worst_rc = 0;
   for (int x = 32; x < 64; x += 3) {
@@ -200,8 +179,8 @@ void expectCloseToRaycast(const std::string& file, double mean_bound, double p95
   scene.width = scene.height = 256;
   const SceneModel model = makeSceneModel("factor:6", scene, test::rendererObserver());
   const ClassifiedVolume cv = classifyScene(scene, *model.model);
-  const auto sw = renderWith(ShearWarpRenderer(), scene, cv);
-  const auto rc = renderWith(RaycastRenderer(), scene, cv);
+  const auto sw = test::render(ShearWarpRenderer(), scene, cv);
+  const auto rc = test::render(RaycastRenderer(), scene, cv);
   const ImageDifference d = relitDifference(sw, rc, *model.model, "D65");
   std::printf("%s at 30°/20°: ΔE2000 mean %.3f p95 %.3f max %.3f over %zu pixels\n", file.c_str(),
               d.stats.mean, d.stats.p95, d.stats.max, d.covered);
@@ -221,17 +200,14 @@ TEST(ShearWarp, AxisAndDiagonalCamerasRenderWithoutGaps) {
   Scene scene = test::phantomScene();
   const auto model = makeSpectralModel(test::rendererObserver(), 4);
   const ClassifiedVolume cv = classifyScene(scene, *model);
-  const shearwarp::RleVolume rle(cv);
-  const ShearWarpRenderer shearwarp;
+  const ShearWarpRenderer shearwarp;  // the encoding is cached on cv: built once per axis
   for (double elevation : {0.0, 35.26438968, 45.0, 90.0, -90.0})
     for (double azimuth = 0.0; azimuth < 360.0; azimuth += 45.0) {
       scene.camera = Camera::orbit(azimuth, elevation, 300.0, 0.0, 70.0);
-      const RenderRequest request{cv, scene.camera, scene.width, scene.height, scene.shading,
-                                  scene.light_direction, scene.termination, true,
-                                  scene.renderer_options};
+      const RenderRequest request = sceneRequest(scene, cv);
       LightIndependentImage sw, rc;
-      ASSERT_NO_THROW(sw = shearwarp.render(rle, request, nullptr)) << azimuth << " " << elevation;
-      rc = RaycastRenderer().render(request, nullptr);
+      ASSERT_NO_THROW(sw = shearwarp.render(request)) << azimuth << " " << elevation;
+      rc = RaycastRenderer().render(request);
       int covered = 0;
       for (int y = 0; y < scene.height; ++y)
         for (int x = 0; x < scene.width; ++x) {
@@ -249,23 +225,23 @@ TEST(ShearWarp, RefusesPerspectiveCamerasAndUnknownOptions) {
   const auto model = makeSpectralModel(test::rendererObserver(), 3);
   scene.camera.fov_degrees = 30.0;
   try {
-    renderScene(ShearWarpRenderer(), scene, *model);
+    test::render(ShearWarpRenderer(), scene, *model);
     FAIL();
   } catch (const Error& e) {
-    EXPECT_NE(std::string(e.what()).find("perspective shear-warp is not implemented"),
+    EXPECT_NE(std::string(e.what()).find("shearwarp renders orthographic cameras only"),
               std::string::npos)
         << e.what();
   }
   scene = test::phantomScene();
   scene.renderer_options = {{"shearwarp", {{"supersampel", 2}}}, {"splat", {{"mode", "sheet"}}}};
   try {
-    renderScene(ShearWarpRenderer(), scene, *model);
+    test::render(ShearWarpRenderer(), scene, *model);
     FAIL();
   } catch (const Error& e) {
     EXPECT_NE(std::string(e.what()).find("supersampel"), std::string::npos) << e.what();
   }
   scene.renderer_options = {{"shearwarp", {{"supersample", 9}}}};
-  EXPECT_THROW(renderScene(ShearWarpRenderer(), scene, *model), Error);
+  EXPECT_THROW(test::render(ShearWarpRenderer(), scene, *model), Error);
 }
 
 // Supersampling the intermediate image reduces the blur of the warp when zoomed in: closer to
@@ -276,10 +252,10 @@ TEST(ShearWarp, SupersamplingReducesZoomBlur) {
   scene.width = scene.height = 192;
   const auto model = makeRgbModel(test::rendererObserver());
   const ClassifiedVolume cv = classifyScene(scene, *model);
-  const auto rc = renderWith(RaycastRenderer(), scene, cv);
-  const auto plain = renderWith(ShearWarpRenderer(), scene, cv);
+  const auto rc = test::render(RaycastRenderer(), scene, cv);
+  const auto plain = test::render(ShearWarpRenderer(), scene, cv);
   scene.renderer_options = {{"shearwarp", {{"supersample", 3}}}};
-  const auto fine = renderWith(ShearWarpRenderer(), scene, cv);
+  const auto fine = test::render(ShearWarpRenderer(), scene, cv);
   const double e1 = relitDifference(plain, rc, *model, "D65").stats.mean;
   const double e3 = relitDifference(fine, rc, *model, "D65").stats.mean;
   std::printf("zoom 3×: ΔE2000 mean supersample 1: %.3f, 3: %.3f\n", e1, e3);

@@ -10,6 +10,7 @@
 #include "renderers/core/scene_model.h"
 #include "renderers/raycast/raycast_renderer.h"
 #include "renderers/core/splat_footprint.h"
+#include "renderers/core/splat_settings.h"
 #include "renderers/splat/splat_renderer.h"
 #include "spectral/error.h"
 #include "spectral/image_difference.h"
@@ -20,21 +21,7 @@ namespace {
 
 LightIndependentImage renderScene(const Scene& scene, const ColourModel& model,
                                   const Renderer& renderer, const nlohmann::json& options) {
-  ClassificationOptions classification;
-  classification.step_world = scene.stepWorld();
-  classification.bins = scene.bins;
-  const ClassifiedVolume cv =
-      classify(scene.volume, scene.transfer_function, model, classification);
-  RenderRequest request{cv,
-                        scene.camera,
-                        scene.width,
-                        scene.height,
-                        scene.shading,
-                        scene.light_direction,
-                        scene.termination,
-                        true,
-                        options};
-  return renderer.render(request, nullptr);
+  return test::render(renderer, scene, model, options);
 }
 
 nlohmann::json splatOptions(const std::string& mode) { return {{"splat", {{"mode", mode}}}}; }
@@ -227,21 +214,24 @@ TEST(Splat, PrincipalAxisAnd45DegreeViewsHaveNoGaps) {
 }
 
 TEST(Splat, BadOptionsNameTheKeyAndValue) {
-  const auto expectError = [](const nlohmann::json& options, const std::string& part) {
+  const auto settingsOf = [](const nlohmann::json& options) {
+    return splat::splatSettings(readBackendOptions(splat::splatOptionSpecs(), options, "splat"));
+  };
+  const auto expectError = [&](const nlohmann::json& options, const std::string& part) {
     try {
-      readSplatSettings(options);
+      settingsOf(options);
       FAIL() << options.dump();
     } catch (const Error& e) {
       EXPECT_NE(std::string(e.what()).find(part), std::string::npos) << e.what();
     }
   };
-  expectError({{"splat", {{"mode", "blend"}}}}, "splat.mode: 'blend' is not sheet or direct");
+  expectError({{"splat", {{"mode", "blend"}}}}, "splat.mode: 'blend' is not one of sheet, direct");
   expectError({{"splat", {{"radius", -1}}}}, "splat.radius");
   expectError({{"splat", {{"sigmma", 0.7}}}}, "sigmma");
   // Other backends' options are theirs to check.
-  EXPECT_NO_THROW(readSplatSettings({{"raycast", {{"anything", 1}}}}));
-  EXPECT_EQ(readSplatSettings({{"splat", {{"mode", "direct"}}}}).mode,
-            SplatSettings::Mode::kDirect);
+  EXPECT_NO_THROW(settingsOf({{"raycast", {{"anything", 1}}}}));
+  EXPECT_EQ(settingsOf({{"splat", {{"mode", "direct"}}}}).mode,
+            splat::SplatSettings::Mode::kDirect);
 }
 
 }  // namespace
