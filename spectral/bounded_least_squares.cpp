@@ -20,12 +20,8 @@ namespace {
 
 enum class State { kFree, kLower, kUpper };
 
-}  // namespace
-
-Eigen::VectorXd solveBoundedLeastSquares(const Eigen::MatrixXd& a, const Eigen::VectorXd& b,
-                                         const Eigen::VectorXd& lower,
-                                         const Eigen::VectorXd& upper,
-                                         BoundedLsReport* report) {
+void checkInputs(const Eigen::MatrixXd& a, const Eigen::VectorXd& b,
+                 const Eigen::VectorXd& lower, const Eigen::VectorXd& upper) {
   const Eigen::Index n = a.cols();
   if (a.rows() != b.size() || lower.size() != n || upper.size() != n)
     throw Error(fmt::format("bounded least squares: A is {}×{}, b has {}, bounds have {} and {}",
@@ -36,6 +32,16 @@ Eigen::VectorXd solveBoundedLeastSquares(const Eigen::MatrixXd& a, const Eigen::
     if (!(lower[i] <= upper[i]) || std::isnan(lower[i]) || std::isnan(upper[i]))
       throw Error(fmt::format("bounded least squares: bounds of x[{}] are [{}, {}]", i, lower[i],
                               upper[i]));
+}
+
+}  // namespace
+
+Eigen::VectorXd solveBoundedLeastSquares(const Eigen::MatrixXd& a, const Eigen::VectorXd& b,
+                                         const Eigen::VectorXd& lower,
+                                         const Eigen::VectorXd& upper,
+                                         BoundedLsReport* report) {
+  const Eigen::Index n = a.cols();
+  checkInputs(a, b, lower, upper);
   if (a.rows() > n + 1) {
     // ‖A x − b‖² = ‖R x − c‖² + const with [A b] = Q [R c]: every later free-set solve then
     // works on n + 1 rows instead of all of them.

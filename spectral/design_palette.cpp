@@ -94,6 +94,37 @@ DesignPalette loadDesignPalette(const std::string& path, const SpectrumLibrary& 
   return parseDesignPalette(JsonReader::parseFile(path), path, library, observer);
 }
 
+// The palette's "options" object.
+static DesignOptions parseDesignOptions(const JsonReader& options) {
+  DesignOptions opt;
+  opt.smoothness = options.number("smoothness", opt.smoothness, 0.0, 1e6);
+  const std::string bounds = options.string("bounds", "physical");
+  if (bounds == "physical")
+    opt.bounds = DesignBounds::kPhysical;
+  else if (bounds == "artificial")
+    opt.bounds = DesignBounds::kArtificial;
+  else
+    options.at("bounds").fail(fmt::format("'{}': expected 'physical' or 'artificial'", bounds));
+  const std::string model = options.string("projection_model", "none");
+  if (model != "none") {
+    int k = 0;
+    if (model.rfind("factor:", 0) != 0 || (k = std::atoi(model.c_str() + 7)) < 3 || k > 16)
+      options.at("projection_model").fail(fmt::format("'{}': expected 'none' or 'factor:k', k in 3..16", model));
+    opt.projection_k = k;
+  }
+  opt.projection_weight = options.number("projection_weight", opt.projection_weight, 0.0, 1e6);
+  opt.projection_de2000 = options.number("projection_de2000", opt.projection_de2000, 0.0, 100.0);
+  opt.projection_rounds = options.integer("projection_rounds", opt.projection_rounds, 1, 1000);
+  opt.light_luminance = options.number("light_luminance", opt.light_luminance, 1e-6, 1e6);
+  opt.max_iterations = options.integer("max_iterations", opt.max_iterations, 1, 100000);
+  opt.miss_de2000 = options.number("miss_de2000", opt.miss_de2000, 0.0);
+  opt.black_y = options.number("black_y", opt.black_y, 0.0);
+  opt.ridge = options.number("ridge", opt.ridge, 0.0, 1e3);
+  opt.split_blocks = options.boolean("split_blocks", opt.split_blocks);
+  options.rejectUnknownKeys();
+  return opt;
+}
+
 DesignPalette parseDesignPalette(const nlohmann::json& json, const std::string& path,
                                  const SpectrumLibrary& library, const Observer& observer) {
   const JsonReader root(json, path);
@@ -185,34 +216,7 @@ DesignPalette parseDesignPalette(const nlohmann::json& json, const std::string& 
   if (p.cells.empty() && p.metamers.empty())
     root.fail("a design palette needs at least one entry in 'cells' or 'metamers'");
 
-  if (auto o = root.find("options")) {
-    DesignOptions& opt = p.options;
-    opt.smoothness = o->number("smoothness", opt.smoothness, 0.0, 1e6);
-    const std::string bounds = o->string("bounds", "physical");
-    if (bounds == "physical")
-      opt.bounds = DesignBounds::kPhysical;
-    else if (bounds == "artificial")
-      opt.bounds = DesignBounds::kArtificial;
-    else
-      o->at("bounds").fail(fmt::format("'{}': expected 'physical' or 'artificial'", bounds));
-    const std::string model = o->string("projection_model", "none");
-    if (model != "none") {
-      int k = 0;
-      if (model.rfind("factor:", 0) != 0 || (k = std::atoi(model.c_str() + 7)) < 3 || k > 16)
-        o->at("projection_model").fail(fmt::format("'{}': expected 'none' or 'factor:k', k in 3..16", model));
-      opt.projection_k = k;
-    }
-    opt.projection_weight = o->number("projection_weight", opt.projection_weight, 0.0, 1e6);
-    opt.projection_de2000 = o->number("projection_de2000", opt.projection_de2000, 0.0, 100.0);
-    opt.projection_rounds = o->integer("projection_rounds", opt.projection_rounds, 1, 1000);
-    opt.light_luminance = o->number("light_luminance", opt.light_luminance, 1e-6, 1e6);
-    opt.max_iterations = o->integer("max_iterations", opt.max_iterations, 1, 100000);
-    opt.miss_de2000 = o->number("miss_de2000", opt.miss_de2000, 0.0);
-    opt.black_y = o->number("black_y", opt.black_y, 0.0);
-    opt.ridge = o->number("ridge", opt.ridge, 0.0, 1e3);
-    opt.split_blocks = o->boolean("split_blocks", opt.split_blocks);
-    o->rejectUnknownKeys();
-  }
+  if (auto o = root.find("options")) p.options = parseDesignOptions(*o);
   return p;
 }
 

@@ -103,6 +103,44 @@ bool bilinear(const DesignPalette& p) {
 
 }  // namespace
 
+// Every constrained cell's target, achieved colour and ΔE2000 (metamers against their
+// members' mean), and a line for each that misses.
+void reportCells(const DesignPalette& palette, const CmfMatrix& cmf, const DesignState& state,
+                 DesignResult* out) {
+  const DesignOptions& opt = palette.options;
+  DesignResult& result = *out;
+  auto report = [&](int m, int j, CellKind kind, const Xyz& target, double weight) {
+    CellReport c;
+    c.material = palette.materials[m].name;
+    c.light = palette.lights[j].name;
+    c.kind = kind;
+    Xyz white;
+    c.achieved = relativeXyz(cmf, state.lights[j], state.materials[m], &white);
+    c.target = target;
+    c.de2000 = deltaE2000(xyzToLab(c.achieved, white), xyzToLab(target, white));
+    c.residual = weight * (c.achieved - target).norm();
+    c.miss = kind == CellKind::kBlack ? c.achieved.y() > opt.black_y : c.de2000 > opt.miss_de2000;
+    if (!c.achieved.allFinite() || !std::isfinite(c.de2000))
+      throw Error(fmt::format("design: cell {} × {} is not finite", c.material, c.light));
+    if (c.miss)
+      result.misses.push_back(
+          kind == CellKind::kBlack
+              ? fmt::format("{} under {}: black cell has Y = {:.4f} > {}", c.material, c.light,
+                            c.achieved.y(), opt.black_y)
+              : fmt::format("{} under {}: {} cell misses by ΔE2000 {:.2f} (> {})", c.material,
+                            c.light, toString(kind), c.de2000, opt.miss_de2000));
+    result.cells.push_back(c);
+  };
+  for (const auto& c : palette.cells) report(c.material, c.light, c.kind, c.target, c.weight);
+  for (const auto& g : palette.metamers) {
+    // The shared colour reported is the members' mean: each member's ΔE is its distance from it.
+    Xyz mean = Xyz::Zero();
+    for (int m : g.materials) mean += relativeXyz(cmf, state.lights[g.light], state.materials[m]);
+    mean /= static_cast<double>(g.materials.size());
+    for (int m : g.materials) report(m, g.light, CellKind::kMetamer, mean, g.weight);
+  }
+}
+
 // The alternation stops when a round lowers the objective by less than a fraction of it, or of
 // the starting objective: bilinear block descent crawls near its optimum (hundreds of rounds
 // for the last 1e-6 of a colour), where the colours no longer change visibly.
@@ -205,36 +243,7 @@ DesignResult designPalette(const DesignPalette& palette, const Observer& observe
   if (opt.projection_k > 0)
     result.projection = projectionErrors(result.lights, result.materials, observer, opt.projection_k);
 
-  auto report = [&](int m, int j, CellKind kind, const Xyz& target, double weight) {
-    CellReport c;
-    c.material = palette.materials[m].name;
-    c.light = palette.lights[j].name;
-    c.kind = kind;
-    Xyz white;
-    c.achieved = relativeXyz(cmf, state.lights[j], state.materials[m], &white);
-    c.target = target;
-    c.de2000 = deltaE2000(xyzToLab(c.achieved, white), xyzToLab(target, white));
-    c.residual = weight * (c.achieved - target).norm();
-    c.miss = kind == CellKind::kBlack ? c.achieved.y() > opt.black_y : c.de2000 > opt.miss_de2000;
-    if (!c.achieved.allFinite() || !std::isfinite(c.de2000))
-      throw Error(fmt::format("design: cell {} × {} is not finite", c.material, c.light));
-    if (c.miss)
-      result.misses.push_back(
-          kind == CellKind::kBlack
-              ? fmt::format("{} under {}: black cell has Y = {:.4f} > {}", c.material, c.light,
-                            c.achieved.y(), opt.black_y)
-              : fmt::format("{} under {}: {} cell misses by ΔE2000 {:.2f} (> {})", c.material,
-                            c.light, toString(kind), c.de2000, opt.miss_de2000));
-    result.cells.push_back(c);
-  };
-  for (const auto& c : palette.cells) report(c.material, c.light, c.kind, c.target, c.weight);
-  for (const auto& g : palette.metamers) {
-    // The shared colour reported is the members' mean: each member's ΔE is its distance from it.
-    Xyz mean = Xyz::Zero();
-    for (int m : g.materials) mean += relativeXyz(cmf, state.lights[g.light], state.materials[m]);
-    mean /= static_cast<double>(g.materials.size());
-    for (int m : g.materials) report(m, g.light, CellKind::kMetamer, mean, g.weight);
-  }
+  reportCells(palette, cmf, state, &result);
   return result;
 }
 

@@ -96,7 +96,7 @@ BackendOptions readBackendOptions(const std::vector<OptionSpec>& specs,
     out.values_[spec.key] = {spec.kind, std::move(value)};
   }
   if (specs.empty() && !r.keys().empty())
-    r.fail(fmt::format("backend '{}' takes no options, got {}", backend, r.json().dump()));
+    r.fail(fmt::format("takes no options, got {}", r.json().dump()));
   r.rejectUnknownKeys();
   return out;
 }

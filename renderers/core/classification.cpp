@@ -56,6 +56,62 @@ Entry blend(const std::vector<std::pair<int, double>>& weights, double opacity_f
 
 bool isIntegerType(ScalarType t) { return t != ScalarType::kFloat32 && t != ScalarType::kFloat64; }
 
+// The blended entries as the float tables backends read; non-finite coefficients are refused.
+void storeEntries(const std::vector<Entry>& entries, ClassifiedVolume& cv) {
+  const int k = cv.k;
+  cv.alpha.resize(cv.entries);
+  cv.specular.resize(cv.entries);
+  cv.reflectance.resize(static_cast<std::size_t>(cv.entries) * k);
+  cv.transmission.resize(static_cast<std::size_t>(cv.entries) * cv.t_channels);
+  for (int e = 0; e < cv.entries; ++e) {
+    cv.alpha[e] = static_cast<float>(entries[e].alpha);
+    cv.specular[e] = static_cast<float>(entries[e].specular);
+    for (int c = 0; c < k; ++c) cv.reflectance[e * k + c] = static_cast<float>(entries[e].reflectance[c]);
+    for (int c = 0; c < cv.t_channels; ++c)
+      cv.transmission[e * cv.t_channels + c] = static_cast<float>(entries[e].transmission[c]);
+  }
+  for (float v : cv.reflectance)
+    if (!std::isfinite(v)) throw Error("classification: non-finite reflectance coefficient");
+  for (float v : cv.transmission)
+    if (!std::isfinite(v)) throw Error("classification: non-finite transmission coefficient");
+}
+
+// Empty-space skipping: a block is occupied when any entry its voxels can reach (labels, or the
+// bins between the block's value range) has non-zero opacity.
+void markOccupiedBlocks(const Volume& volume, ClassifiedVolume& cv) {
+  const int B = ClassifiedVolume::kBlock;
+  for (int a = 0; a < 3; ++a) cv.blocks[a] = (cv.dims[a] + B - 1) / B;
+  cv.block_occupied.assign(
+      static_cast<std::size_t>(cv.blocks[0]) * cv.blocks[1] * cv.blocks[2], 0);
+  std::vector<int> nonzero_prefix(cv.entries + 1, 0);
+  for (int e = 0; e < cv.entries; ++e) nonzero_prefix[e + 1] = nonzero_prefix[e] + (cv.alpha[e] > 0);
+#pragma omp parallel for collapse(2) schedule(dynamic)
+  for (int bz = 0; bz < cv.blocks[2]; ++bz)
+    for (int by = 0; by < cv.blocks[1]; ++by)
+      for (int bx = 0; bx < cv.blocks[0]; ++bx) {
+        float vmin = INFINITY, vmax = -INFINITY;
+        bool occupied = false;
+        for (int z = bz * B; z <= std::min(bz * B + B, cv.dims[2] - 1); ++z)
+          for (int y = by * B; y <= std::min(by * B + B, cv.dims[1] - 1); ++y)
+            for (int x = bx * B; x <= std::min(bx * B + B, cv.dims[0] - 1); ++x) {
+              const std::size_t i = volume.index(x, y, z);
+              if (cv.labels) {
+                occupied = occupied || cv.alpha[cv.label[i]] > 0;
+              } else {
+                vmin = std::min(vmin, cv.values[i]);
+                vmax = std::max(vmax, cv.values[i]);
+              }
+            }
+        if (!cv.labels) {
+          const int b0 = std::clamp(static_cast<int>(std::floor((vmin - cv.value_lo) * cv.value_scale)), 0, cv.entries - 1);
+          const int b1 = std::clamp(static_cast<int>(std::ceil((vmax - cv.value_lo) * cv.value_scale)), 0, cv.entries - 1);
+          occupied = nonzero_prefix[b1 + 1] - nonzero_prefix[b0] > 0;
+        }
+        cv.block_occupied[(static_cast<std::size_t>(bz) * cv.blocks[1] + by) * cv.blocks[0] + bx] =
+            occupied;
+      }
+}
+
 }  // namespace
 
 ClassifiedVolume classify(const Volume& volume, const TransferFunction& tf,
@@ -127,21 +183,7 @@ ClassifiedVolume classify(const Volume& volume, const TransferFunction& tf,
     }
   }
 
-  cv.alpha.resize(cv.entries);
-  cv.specular.resize(cv.entries);
-  cv.reflectance.resize(static_cast<std::size_t>(cv.entries) * k);
-  cv.transmission.resize(static_cast<std::size_t>(cv.entries) * cv.t_channels);
-  for (int e = 0; e < cv.entries; ++e) {
-    cv.alpha[e] = static_cast<float>(entries[e].alpha);
-    cv.specular[e] = static_cast<float>(entries[e].specular);
-    for (int c = 0; c < k; ++c) cv.reflectance[e * k + c] = static_cast<float>(entries[e].reflectance[c]);
-    for (int c = 0; c < cv.t_channels; ++c)
-      cv.transmission[e * cv.t_channels + c] = static_cast<float>(entries[e].transmission[c]);
-  }
-  for (float v : cv.reflectance)
-    if (!std::isfinite(v)) throw Error("classification: non-finite reflectance coefficient");
-  for (float v : cv.transmission)
-    if (!std::isfinite(v)) throw Error("classification: non-finite transmission coefficient");
+  storeEntries(entries, cv);
 
   // Gradients: of the data for scalar volumes; of the per-voxel extinction for label maps
   // (label numbers have no meaningful gradient).
@@ -153,38 +195,7 @@ ClassifiedVolume classify(const Volume& volume, const TransferFunction& tf,
     cv.shading_field = cv.values;
   }
 
-  // Empty-space skipping blocks.
-  const int B = ClassifiedVolume::kBlock;
-  for (int a = 0; a < 3; ++a) cv.blocks[a] = (cv.dims[a] + B - 1) / B;
-  cv.block_occupied.assign(
-      static_cast<std::size_t>(cv.blocks[0]) * cv.blocks[1] * cv.blocks[2], 0);
-  std::vector<int> nonzero_prefix(cv.entries + 1, 0);
-  for (int e = 0; e < cv.entries; ++e) nonzero_prefix[e + 1] = nonzero_prefix[e] + (cv.alpha[e] > 0);
-#pragma omp parallel for collapse(2) schedule(dynamic)
-  for (int bz = 0; bz < cv.blocks[2]; ++bz)
-    for (int by = 0; by < cv.blocks[1]; ++by)
-      for (int bx = 0; bx < cv.blocks[0]; ++bx) {
-        float vmin = INFINITY, vmax = -INFINITY;
-        bool occupied = false;
-        for (int z = bz * B; z <= std::min(bz * B + B, cv.dims[2] - 1); ++z)
-          for (int y = by * B; y <= std::min(by * B + B, cv.dims[1] - 1); ++y)
-            for (int x = bx * B; x <= std::min(bx * B + B, cv.dims[0] - 1); ++x) {
-              const std::size_t i = volume.index(x, y, z);
-              if (cv.labels) {
-                occupied = occupied || cv.alpha[cv.label[i]] > 0;
-              } else {
-                vmin = std::min(vmin, cv.values[i]);
-                vmax = std::max(vmax, cv.values[i]);
-              }
-            }
-        if (!cv.labels) {
-          const int b0 = std::clamp(static_cast<int>(std::floor((vmin - cv.value_lo) * cv.value_scale)), 0, cv.entries - 1);
-          const int b1 = std::clamp(static_cast<int>(std::ceil((vmax - cv.value_lo) * cv.value_scale)), 0, cv.entries - 1);
-          occupied = nonzero_prefix[b1 + 1] - nonzero_prefix[b0] > 0;
-        }
-        cv.block_occupied[(static_cast<std::size_t>(bz) * cv.blocks[1] + by) * cv.blocks[0] + bx] =
-            occupied;
-      }
+  markOccupiedBlocks(volume, cv);
   return cv;
 }
 

@@ -22,7 +22,6 @@ namespace svr::detail {
 
 namespace {
 
-constexpr std::size_t kMaxHeaderBytes = std::size_t{1} << 20;
 
 struct MetaKeys {
   std::optional<std::string> object_type, element_data_file;
@@ -96,7 +95,7 @@ ScalarType parseElementType(const std::string& path, const std::string& value) {
                   path, value));
 }
 
-MetaKeys parseKeys(const std::string& path) {
+MetaKeys parseKeys(const std::string& path, std::uint64_t budget) {
   std::ifstream in(path, std::ios::binary);
   if (!in) throw Error(fmt::format("{}: cannot open the file", path));
   MetaKeys keys;
@@ -106,11 +105,8 @@ MetaKeys parseKeys(const std::string& path) {
   while (!keys.element_data_file && std::getline(in, line)) {
     ++line_number;
     consumed += line.size() + (in.eof() ? 0 : 1);
-    if (consumed > kMaxHeaderBytes)
-      throw Error(
-          fmt::format("{}: no ElementDataFile in the first {} bytes; a MetaImage header "
-                      "ends with it",
-                      path, kMaxHeaderBytes));
+    checkHeaderWithinBudget(path, consumed, budget, "the ElementDataFile line that ends it");
+    checkHeaderLineIsText(path, line, line_number);
     if (!line.empty() && line.back() == '\r') line.pop_back();
     if (trim(line).empty()) continue;
     const auto equals = line.find('=');
@@ -164,8 +160,8 @@ MetaKeys parseKeys(const std::string& path) {
 
 }  // namespace
 
-VolumeSource readMetaImageSource(const std::string& path) {
-  const MetaKeys keys = parseKeys(path);
+VolumeSource readMetaImageSource(const std::string& path, std::uint64_t budget) {
+  const MetaKeys keys = parseKeys(path, budget);
   const auto require = [&](bool present, const char* key) {
     if (!present) throw Error(fmt::format("{}: no {}; a MetaImage volume needs it", path, key));
   };

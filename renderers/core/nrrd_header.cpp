@@ -33,7 +33,6 @@ namespace svr::detail {
 
 namespace {
 
-constexpr std::size_t kMaxHeaderBytes = std::size_t{1} << 20;
 constexpr const char* kAxisNames[] = {"x", "y", "z"};
 
 struct NrrdDeleter {
@@ -61,7 +60,7 @@ void checkSpacing(const std::string& path, const std::string& key, int axis, dou
 }
 
 // Checks the header's "field: value" lines that svr words itself (see the top of the file).
-void preScan(const std::string& path) {
+void preScan(const std::string& path, std::uint64_t budget) {
   std::ifstream in(path, std::ios::binary);
   if (!in) throw Error(fmt::format("{}: cannot open the file", path));
   std::string line;
@@ -74,14 +73,13 @@ void preScan(const std::string& path) {
                     path, trim(line.substr(0, 16))));
   std::optional<ScalarType> type;
   std::vector<std::int64_t> sizes;
-  std::size_t header_bytes = line.size();
+  std::uint64_t header_bytes = line.size();
+  int line_number = 1;
   while (std::getline(in, line)) {
     header_bytes += line.size() + 1;
-    if (header_bytes > kMaxHeaderBytes)
-      throw Error(
-          fmt::format("{}: header longer than {} bytes without the empty line that "
-                      "ends it",
-                      path, kMaxHeaderBytes));
+    ++line_number;
+    checkHeaderWithinBudget(path, header_bytes, budget, "the empty line that ends it");
+    checkHeaderLineIsText(path, line, line_number);
     if (!line.empty() && line.back() == '\r') line.pop_back();
     if (line.empty()) break;       // the end of an attached header
     if (line[0] == '#') continue;  // comment
@@ -181,8 +179,8 @@ ScalarType scalarTypeOf(const std::string& path, int teem_type) {
 
 }  // namespace
 
-VolumeSource readNrrdSource(const std::string& path) {
-  preScan(path);
+VolumeSource readNrrdSource(const std::string& path, std::uint64_t budget) {
+  preScan(path, budget);
 
   const std::lock_guard<std::mutex> lock(teemMutex());
   const std::unique_ptr<Nrrd, NrrdDeleter> nrrd(nrrdNew());

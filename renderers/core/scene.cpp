@@ -135,6 +135,14 @@ Camera parseCamera(const std::optional<JsonReader>& r, const Volume& volume) {
     }
   }
   r->rejectUnknownKeys();
+  // A camera that cannot make rays (eye on the target, up along the view) fails here, naming
+  // the file and the key, rather than at the first render.
+  try {
+    RayGenerator(c, 1, 1);
+  } catch (const Error& e) {
+    const std::string what = e.what();
+    r->fail(what.rfind("camera: ", 0) == 0 ? what.substr(8) : what);
+  }
   return c;
 }
 
@@ -243,6 +251,9 @@ Scene parseScene(const nlohmann::json& json, const std::string& file,
           model->fail(e.what());
         }
       }();
+      if (name.kind == ModelKind::kSpectral && name.k > spectra.grid().count)
+        model->fail(fmt::format("spectral:{} asks for more bands than the {} samples of the grid",
+                                name.k, spectra.grid().count));
       if (name.kind == ModelKind::kLinear)
         model->fail("linear:k has no componentwise product; the renderers take rgb, factor:k, "
                     "spectral:n or auto");

@@ -50,8 +50,8 @@ VolumeSource openSource(const std::string& path, const VolumeLoadOptions& option
   if (fs::is_directory(status))
     throw Error(fmt::format("{}: is a folder, not a volume file", path));
   const std::string extension = detail::toLower(fs::path(path).extension().string());
-  if (extension == ".nrrd" || extension == ".nhdr") return detail::readNrrdSource(path);
-  if (extension == ".mhd" || extension == ".mha") return detail::readMetaImageSource(path);
+  if (extension == ".nrrd" || extension == ".nhdr") return detail::readNrrdSource(path, options.memory_budget);
+  if (extension == ".mhd" || extension == ".mha") return detail::readMetaImageSource(path, options.memory_budget);
   if (options.raw) return rawSource(path, *options.raw);
   throw Error(
       fmt::format("{}: unknown volume format '{}'; expected .nrrd, .nhdr, .mhd or .mha, "

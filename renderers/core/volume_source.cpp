@@ -13,6 +13,7 @@
 #include <memory>
 #include <sstream>
 
+#include "renderers/core/memory_budget.h"
 #include "spectral/error.h"
 
 namespace svr::detail {
@@ -130,6 +131,26 @@ void inflatePayload(std::FILE* file, const VolumeSource& source, std::vector<std
 }
 
 }  // namespace
+
+void checkHeaderLineIsText(const std::string& path, const std::string& line, int line_number) {
+  for (std::size_t i = 0; i < line.size(); ++i) {
+    const auto byte = static_cast<unsigned char>(line[i]);
+    if (byte < 0x20 && byte != '\t' && byte != '\r')
+      throw Error(fmt::format("{}: line {} of the header holds binary data (byte 0x{:02x} at "
+                              "column {}); is this a data file rather than its header?",
+                              path, line_number, byte, i + 1));
+  }
+}
+
+void checkHeaderWithinBudget(const std::string& path, std::uint64_t consumed,
+                             std::uint64_t budget, const char* what_ends_it) {
+  // Any header of up to 1 MiB reads whatever the budget (a small budget is meant for voxels).
+  budget = std::max<std::uint64_t>(budget, std::uint64_t{1} << 20);
+  if (consumed > budget)
+    throw Error(fmt::format("{}: the header runs past {} without {}, over the memory budget "
+                            "(set --memory-budget to raise it)",
+                            path, formatBytes(budget), what_ends_it));
+}
 
 std::string trim(const std::string& text) {
   const auto space = [](unsigned char c) { return std::isspace(c) != 0; };

@@ -36,9 +36,19 @@ void checkRawPayloadSize(const VolumeSource& source);
 // files, truncated or corrupt compressed streams and streams that hold more than expected.
 std::vector<std::byte> readPayload(const VolumeSource& source);
 
-// Readers per format (nrrd_header.cpp, metaimage_header.cpp).
-VolumeSource readNrrdSource(const std::string& path);
-VolumeSource readMetaImageSource(const std::string& path);
+// Readers per format (nrrd_header.cpp, metaimage_header.cpp). A header may be of any length
+// within `budget` bytes (and 1 MiB always) (the memory budget: the format sets no limit, and comments or key/value
+// metadata can run to megabytes); a line holding binary bytes is refused, so a data file given
+// by mistake fails at once with a clear error instead of being read as text.
+VolumeSource readNrrdSource(const std::string& path, std::uint64_t budget);
+VolumeSource readMetaImageSource(const std::string& path, std::uint64_t budget);
+
+// Throws "PATH: line N of the header holds binary data (byte 0x00 at column C) …" when the
+// line has a byte that no text header holds (control characters other than tab and CR).
+void checkHeaderLineIsText(const std::string& path, const std::string& line, int line_number);
+// Throws "PATH: the header runs past B bytes …, over the memory budget" when consumed > budget.
+void checkHeaderWithinBudget(const std::string& path, std::uint64_t consumed,
+                             std::uint64_t budget, const char* what_ends_it);
 
 // Shared header-text helpers.
 std::string trim(const std::string& text);

@@ -1,16 +1,7 @@
 // NRRD headers (attached .nrrd or detached, pointing at the scratch folder's data files), read
 // through the whole loader: pre-scan, teem, the budget check and the raw/gzip payload reader.
-#include "renderers/core/volume_io.h"
-#include "spectral/error.h"
 #include "tests/fuzz/fuzz_support.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
-  const std::string path = svr::fuzz::writeInput("input.nrrd", data, size);
-  svr::VolumeLoadOptions options;
-  options.memory_budget = svr::fuzz::kMemoryBudget;
-  try {
-    svr::loadVolume(path, options);
-  } catch (const svr::Error&) {
-  }
-  return 0;
+  return svr::fuzz::loadVolumeInput("input.nrrd", data, size);
 }

@@ -10,7 +10,9 @@
 #include <stdexcept>
 #include <vector>
 
+#include "renderers/core/volume_io.h"
 #include "spectral/data_dir.h"
+#include "spectral/error.h"
 
 namespace svr::fuzz {
 namespace fs = std::filesystem;
@@ -89,6 +91,17 @@ const SpectrumLibrary& library() {
 const Observer& observer() {
   static const Observer obs = Observer::cie1931(defaultDataDir(), WavelengthGrid::standard());
   return obs;
+}
+
+int loadVolumeInput(const std::string& name, const std::uint8_t* data, std::size_t size) {
+  const std::string path = writeInput(name, data, size);
+  VolumeLoadOptions options;
+  options.memory_budget = kMemoryBudget;
+  try {
+    loadVolume(path, options);
+  } catch (const Error&) {
+  }
+  return 0;
 }
 
 }  // namespace svr::fuzz

@@ -29,6 +29,9 @@ const std::string& scratchDir();
 // Writes the input to scratchDir()/name (replacing it) and returns the path.
 std::string writeInput(const std::string& name, const std::uint8_t* data, std::size_t size);
 
+// Writes the input to scratchDir()/name and loads it as a volume (header, budget check, payload)
+// under kMemoryBudget: the NRRD and MetaImage targets differ only in the name's extension.
+int loadVolumeInput(const std::string& name, const std::uint8_t* data, std::size_t size);
 const SpectrumLibrary& library();
 const Observer& observer();
 

@@ -3,6 +3,8 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <fmt/format.h>
+
 #include <random>
 #include <string>
 
@@ -371,6 +373,49 @@ TEST(VolumeIoErrors, RandomAndMutatedHeadersNeverCrash) {
   }
   EXPECT_EQ(errors + loaded, 300);
   EXPECT_GT(errors, 100);
+}
+
+}  // namespace
+}  // namespace svr
+
+namespace svr {
+namespace {
+
+// The NRRD format sets no limit on a header's length: megabytes of comments and key/value
+// metadata load, within the memory budget; beyond it, and for binary bytes, a clear error.
+TEST(VolumeIoErrors, HeadersOfAnyLengthWithinTheBudgetLoad) {
+  const TempDir dir;
+  std::string metadata;
+  for (int i = 0; metadata.size() < (std::size_t{3} << 20); ++i)
+    metadata += fmt::format("# comment line {} of a long provenance record\nkey{}:=value {}\n",
+                            i, i, i);
+  const std::string lines =
+      "sizes: 2 2 2\nencoding: raw\n" + metadata + "data file: eight.raw\n";
+  const std::string path = nhdr(dir, "long.nhdr", lines);
+  const Volume v = loadVolume(path);
+  EXPECT_EQ(v.dims(), (Dims{2, 2, 2}));
+  // The same as an attached header: the payload follows the empty line.
+  std::string attached = kNrrdHead + "sizes: 2 2 2\nencoding: raw\n" + metadata + "\n";
+  attached.append(8, '\x07');
+  test::writeFile(dir.path("long.nrrd"), attached);
+  EXPECT_EQ(loadVolume(dir.path("long.nrrd")).value(1, 1, 1), 7.0);
+
+  VolumeLoadOptions small;
+  small.memory_budget = std::uint64_t{1} << 20;
+  EXPECT_THAT(loadError(path, small),
+              AllOf(HasSubstr("the header runs past 1.0 MiB without the empty line that ends it"),
+                    HasSubstr("memory budget")));
+}
+
+TEST(VolumeIoErrors, BinaryBytesInAHeaderAreRefused) {
+  const TempDir dir;
+  const std::string path =
+      nhdr(dir, "binary.nhdr", "sizes: 2 2 2\nencoding: raw\n# \x01\x02 junk\ndata file: eight.raw\n");
+  EXPECT_THAT(loadError(path),
+              HasSubstr("line 6 of the header holds binary data (byte 0x01 at column 3)"));
+  const std::string mha = mhd(dir, "binary.mhd", kMhdHead + std::string("Comment = a\0b\n", 14) +
+                                                     "ElementDataFile = eight.raw\n");
+  EXPECT_THAT(loadError(mha), HasSubstr("holds binary data (byte 0x00"));
 }
 
 }  // namespace
