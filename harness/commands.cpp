@@ -13,7 +13,8 @@
   X(demo)               \
   X(design)             \
   X(model_error)        \
-  X(info)
+  X(info)               \
+  /* one line per entry, each ending in a backslash */
 
 namespace svr {
 namespace commands {

@@ -13,7 +13,8 @@
   X(raycast)            \
   X(shearwarp)          \
   X(splat)              \
-  X(gl)
+  X(gl)                 \
+  /* one line per entry, each ending in a backslash */
 
 namespace svr {
 namespace backends {
