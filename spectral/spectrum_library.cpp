@@ -72,19 +72,26 @@ void SpectrumLibrary::add(const std::string& name, Spectrum s, SpectrumKind kind
 }
 
 std::vector<std::string> SpectrumLibrary::closestNames(const std::string& name, int count) const {
-  std::vector<std::pair<int, std::string>> scored;
+  // Library names are short; scoring only the first 64 characters of what was typed keeps a
+  // long garbage name (a fuzzed scene, a pasted path) from costing |name| × |known| per entry.
+  const std::string typed = name.substr(0, 64);
+  std::vector<std::pair<int, const std::string*>> scored;
+  scored.reserve(entries_.size());
   for (const auto& [known, entry] : entries_) {
-    int d = editDistance(name, known);
+    int d = editDistance(typed, known);
     // A name typed without its family prefix ("dark skin") should still find it.
     const auto slash = known.find('/');
     if (slash != std::string::npos)
-      d = std::min(d, editDistance(name, known.substr(slash + 1)) + 1);
-    scored.emplace_back(d, known);
+      d = std::min(d, editDistance(typed, known.substr(slash + 1)) + 1);
+    scored.emplace_back(d, &known);
   }
-  std::sort(scored.begin(), scored.end());
+  const auto shown = std::min<std::size_t>(std::max(count, 0), scored.size());
+  std::partial_sort(scored.begin(), scored.begin() + shown, scored.end(),
+                    [](const auto& a, const auto& b) {
+                      return a.first != b.first ? a.first < b.first : *a.second < *b.second;
+                    });
   std::vector<std::string> out;
-  for (int i = 0; i < count && i < static_cast<int>(scored.size()); ++i)
-    out.push_back(scored[i].second);
+  for (std::size_t i = 0; i < shown; ++i) out.push_back(*scored[i].second);
   return out;
 }
 
