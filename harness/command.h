@@ -5,6 +5,7 @@
 // only dispatches: adding a command is its file plus one line in that list.
 
 #include <functional>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -28,6 +29,17 @@ struct CommandEntry {
 };
 
 const std::vector<CommandEntry>& commandEntries();
+
+// Sets sub's callback to run `run` on the parsed options, with the global data folder, keeping
+// its exit status: the callback of every command that checks nothing more itself.
+template <class Options, class App>
+void runOnParse(App& sub, CommandContext& context, std::shared_ptr<Options> options,
+                int (*run)(const Options&)) {
+  sub.callback([options, run, &context] {
+    options->data_dir = context.data_dir;
+    context.status = run(*options);
+  });
+}
 
 // An image size given on the command line: the scene file's image.width/height range, checked
 // before any loading or rendering ("render: --width 0 is outside 1..16384").

@@ -187,10 +187,7 @@ CommandEntry design() {
             sub.add_flag("--no-plots", [o](std::int64_t) { o->plots = false; },
                          "skip spectra.png (matplotlib)");
             sub.add_flag("-q,--quiet", o->quiet, "no table");
-            sub.callback([o, &context] {
-              o->data_dir = context.data_dir;
-              context.status = runDesign(*o);
-            });
+            runOnParse(sub, context, o, &runDesign);
           }};
 }
 

@@ -234,10 +234,7 @@ CommandEntry model_error() {
             sub.add_flag("--contrast", o->contrast,
                          "also show closed-form (unrefined) sharpening, which is unstable");
             sub.add_flag("-q,--quiet", o->quiet, "no progress bar");
-            sub.callback([o, &context] {
-              o->data_dir = context.data_dir;
-              context.status = runModelError(*o);
-            });
+            runOnParse(sub, context, o, &runModelError);
           }};
 }
 

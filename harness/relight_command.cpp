@@ -104,10 +104,7 @@ CommandEntry relight() {
             sub.add_option("--on", o->relighter,
                            "relight on this backend's device instead of the CPU (gl: an OpenGL "
                            "fragment shader)");
-            sub.callback([o, &context] {
-              o->data_dir = context.data_dir;
-              context.status = runRelight(*o);
-            });
+            runOnParse(sub, context, o, &runRelight);
           }};
 }
 
