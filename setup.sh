@@ -13,7 +13,7 @@ PACKAGES=(
   libcli11-dev nlohmann-json3-dev libfmt-dev
   zlib1g-dev libteem-dev libssl-dev
   python3-matplotlib python3-numpy
-  clang libclang-rt-14-dev  # the fuzz preset: clang++ and libFuzzer (tests/fuzz)
+  clang libclang-rt-14-dev time  # the fuzz preset: clang++ and libFuzzer; CPU seconds (tests/fuzz)
   libvolpack1-dev  # bench/peers: VolPack, the shear-warp peer (small, static)
 )
 case "${1:-}" in

@@ -26,6 +26,9 @@ int runRelight(const RelightOptions& o) {
     throw Error("relight: give exactly one of --light NAME or --mix NAME:W,NAME:W");
   if (!std::isfinite(o.exposure) || o.exposure <= 0)
     throw Error(fmt::format("relight: --exposure {} must be > 0", o.exposure));
+  // A backend without a relighter (or not built) fails before any file is read.
+  const std::unique_ptr<Relighter> device =
+      o.relighter.empty() ? nullptr : makeRelighter(o.relighter);
   std::map<std::string, std::string> attributes;
   const LightIndependentImage image = readLightIndependentExr(o.image, &attributes);
   std::string model_path = o.model;
@@ -74,8 +77,7 @@ int runRelight(const RelightOptions& o) {
   post.setLight(light, o.exposure);
   if (!o.background.empty()) post.setBackground(model->project(library.get(o.background)));
   std::vector<std::uint8_t> rgb(3 * image.pixels());
-  if (!o.relighter.empty()) {
-    const auto device = makeRelighter(o.relighter);
+  if (device) {
     device->setImage(image);
     device->relightSrgb8(post.foldedMatrix(image, RelitSpace::kLinearSrgb), rgb);
   } else {
