@@ -59,16 +59,6 @@ ModelName parseModelName(const std::string& text) {
 
 namespace {
 
-nlohmann::json matrixToJson(const Eigen::MatrixXd& m) {
-  nlohmann::json rows = nlohmann::json::array();
-  for (Eigen::Index r = 0; r < m.rows(); ++r) {
-    std::vector<double> row(m.cols());
-    for (Eigen::Index c = 0; c < m.cols(); ++c) row[c] = m(r, c);
-    rows.push_back(row);
-  }
-  return rows;
-}
-
 Eigen::MatrixXd matrixFromJson(const nlohmann::json& j, const std::string& where) {
   if (!j.is_array()) throw Error(fmt::format("{}: expected an array of rows", where));
   if (j.empty()) return {};
@@ -89,21 +79,21 @@ Eigen::MatrixXd matrixFromJson(const nlohmann::json& j, const std::string& where
 
 }  // namespace
 
-nlohmann::json ComponentwiseModel::toJson() const {
-  return {{"model", name()},
-          {"variant", variant()},
-          {"grid", {{"start_nm", grid_.start_nm}, {"step_nm", grid_.step_nm}, {"count", grid_.count}}},
-          {"projection", matrixToJson(projection_)},
-          {"to_xyz", matrixToJson(to_xyz_)},
-          {"basis", matrixToJson(basis_)}};
+nlohmann::json matrixToJson(const Eigen::MatrixXd& m) {
+  nlohmann::json rows = nlohmann::json::array();
+  for (Eigen::Index r = 0; r < m.rows(); ++r) {
+    std::vector<double> row(m.cols());
+    for (Eigen::Index c = 0; c < m.cols(); ++c) row[c] = m(r, c);
+    rows.push_back(row);
+  }
+  return rows;
 }
 
-nlohmann::json LinearModel::toJson() const {
+nlohmann::json ColourModel::jsonHead() const {
   return {{"model", name()},
           {"variant", variant()},
           {"grid", {{"start_nm", grid_.start_nm}, {"step_nm", grid_.step_nm}, {"count", grid_.count}}},
-          {"to_xyz", matrixToJson(to_xyz_)},
-          {"basis", matrixToJson(basis_)}};
+          {"to_xyz", matrixToJson(to_xyz_)}};
 }
 
 std::unique_ptr<ColourModel> modelFromJson(const nlohmann::json& j, const std::string& source) {

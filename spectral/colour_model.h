@@ -56,9 +56,12 @@ class ColourModel {
   // whose coefficients are given: toXyz · diag(light) when componentwise.
   virtual Eigen::MatrixXd lightMatrix(const Eigen::VectorXd& light) const = 0;
 
+  // Each model writes itself in its own file (componentwise_model.cpp, linear_model.cpp), on
+  // jsonHead(): name, variant, grid and to_xyz; modelFromJson reads any of them back.
   virtual nlohmann::json toJson() const = 0;
 
  protected:
+  nlohmann::json jsonHead() const;
   ColourModel(ModelKind kind, std::string variant, WavelengthGrid grid)
       : kind_(kind), variant_(std::move(variant)), grid_(grid) {}
 
@@ -68,6 +71,9 @@ class ColourModel {
   Eigen::VectorXd white_;
   XyzMatrix to_xyz_;
 };
+
+// A matrix as rows of numbers (the model files' layout).
+nlohmann::json matrixToJson(const Eigen::MatrixXd& m);
 
 // Loads any model saved with toJson(); `source` names the file in errors.
 std::unique_ptr<ColourModel> modelFromJson(const nlohmann::json& j, const std::string& source);

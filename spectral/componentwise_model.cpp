@@ -2,6 +2,8 @@
 
 #include <fmt/format.h>
 
+#include <nlohmann/json.hpp>
+
 #include "spectral/error.h"
 
 namespace svr {
@@ -56,6 +58,13 @@ std::unique_ptr<ComponentwiseModel> makeSpectralModel(const Observer& observer, 
   XyzMatrix to_xyz = observer.weightedCmf().transpose() * basis;
   return std::make_unique<ComponentwiseModel>(ModelKind::kSpectral, n == grid.count ? "" : "bands",
                                               grid, projection, to_xyz, basis);
+}
+
+nlohmann::json ComponentwiseModel::toJson() const {
+  nlohmann::json j = jsonHead();
+  j["projection"] = matrixToJson(projection_);
+  j["basis"] = matrixToJson(basis_);
+  return j;
 }
 
 }  // namespace svr

@@ -2,6 +2,8 @@
 
 #include <fmt/format.h>
 
+#include <nlohmann/json.hpp>
+
 #include "spectral/error.h"
 
 namespace svr {
@@ -40,6 +42,12 @@ Eigen::MatrixXd LinearModel::lightMatrix(const Eigen::VectorXd& light) const {
   Eigen::MatrixXd m(3, k * k);
   for (int j = 0; j < k; ++j) m.middleCols(j * k, k) = to_xyz_ * light[j];
   return m;
+}
+
+nlohmann::json LinearModel::toJson() const {
+  nlohmann::json j = jsonHead();
+  j["basis"] = matrixToJson(basis_);
+  return j;
 }
 
 }  // namespace svr
