@@ -119,6 +119,16 @@ int runRender(const RenderOptions& o) {
     applyOptionAssignment(scene.renderer_options, option, "--option");
   t.load = msSince(t_load);
 
+  if (!o.model.empty() && o.model != "auto") {  // a bad --model names the flag, not the scene
+    try {
+      const ModelName name = parseModelName(o.model);
+      if (name.kind == ModelKind::kSpectral && name.k > grid.count)
+        throw Error(fmt::format("spectral:{} asks for more bands than the {} samples of the grid",
+                                name.k, grid.count));
+    } catch (const Error& e) {
+      throw Error(fmt::format("--model '{}': {}", o.model, e.what()));
+    }
+  }
   const auto t_classify = clock::now();
   const SceneModel chosen = makeSceneModel(o.model.empty() ? scene.model : o.model, scene, observer);
   const ColourModel& model = *chosen.model;

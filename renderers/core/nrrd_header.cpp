@@ -34,6 +34,12 @@ namespace svr::detail {
 namespace {
 
 constexpr const char* kAxisNames[] = {"x", "y", "z"};
+// teem 1.12 formats its error messages with vsprintf into a fixed buffer of about 1 KiB and
+// quotes the offending header line in them, so a field line of ~1 KB that it cannot parse
+// overflows the buffer and aborts the process (found by fuzz_nrrd's long campaign, issue 15;
+// tests/data/bad/nrrd_long_field_line.nrrd). Field lines are refused beyond this length;
+// comments and key:=value lines, which teem stores without quoting them, may be of any length.
+constexpr std::size_t kMaxFieldLine = 512;
 
 struct NrrdDeleter {
   void operator()(Nrrd* nrrd) const { nrrdNuke(nrrd); }
@@ -80,6 +86,11 @@ void preScan(const std::string& path, std::uint64_t budget) {
     ++line_number;
     checkHeaderWithinBudget(path, header_bytes, budget, "the empty line that ends it");
     checkHeaderLineIsText(path, line, line_number);
+    if (line.size() > kMaxFieldLine && line[0] != '#' && line.find(":=") == std::string::npos)
+      throw Error(fmt::format("{}: line {} is a field line of {} bytes; field lines (all but "
+                              "comments and key:=value lines) may be at most {} bytes, since "
+                              "teem's error messages overflow on longer ones",
+                              path, line_number, line.size(), kMaxFieldLine));
     if (!line.empty() && line.back() == '\r') line.pop_back();
     if (line.empty()) break;       // the end of an attached header
     if (line[0] == '#') continue;  // comment

@@ -33,7 +33,7 @@ LightIndependentImage Renderer::render(const RenderRequest& request,
   const ClassifiedVolume& cv = request.volume;
   checkMemoryBudget(
       LightIndependentImage::bytesFor(request.width, request.height, cv.k, cv.t_channels) +
-          workingBytes(request),
+          workingBytes(request, options),
       request.memory_budget,
       fmt::format("{}: a {}×{} image of {} + {} channels", backend.name, request.width,
                   request.height, cv.k, cv.t_channels));

@@ -57,7 +57,10 @@ class Renderer {
  protected:
   // Bytes the backend allocates beyond the output image for this request (intermediate
   // images, sheet buffers), for the memory-budget check.
-  virtual std::uint64_t workingBytes(const RenderRequest& request) const { return 0; }
+  virtual std::uint64_t workingBytes(const RenderRequest& request,
+                                     const BackendOptions& options) const {
+    return 0;
+  }
   virtual LightIndependentImage renderImpl(const RenderRequest& request,
                                            const BackendOptions& options,
                                            ProgressCounter& progress) const = 0;

@@ -473,6 +473,13 @@ const BackendInfo& GlSplatRenderer::info() const {
   return info;
 }
 
+std::uint64_t GlSplatRenderer::workingBytes(const RenderRequest& req,
+                                            const BackendOptions&) const {
+  const int k = req.volume.k, kt = req.volume.t_channels;
+  const std::uint64_t layers = (k + 3) / 4 + (1 + kt + k + 3) / 4 + (kt + 3) / 4 + 1;
+  return layers * std::uint64_t(req.width) * std::uint64_t(req.height) * 4 * sizeof(float);
+}
+
 LightIndependentImage GlSplatRenderer::renderImpl(const RenderRequest& req,
                                                   const BackendOptions& options,
                                                   ProgressCounter& progress) const {

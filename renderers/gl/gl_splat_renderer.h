@@ -45,6 +45,9 @@ class GlSplatRenderer final : public Renderer {
   const BackendInfo& info() const override;
 
  protected:
+  // The RGBA32F targets (S, the sheet buffer, optical depth) and the read-back buffer.
+  std::uint64_t workingBytes(const RenderRequest& request,
+                             const BackendOptions& options) const override;
   // Throws svr::Error when no context can be made, a shader fails, or the image or volume
   // exceeds the context's limits (named in the message).
   LightIndependentImage renderImpl(const RenderRequest& request, const BackendOptions& options,

@@ -46,6 +46,15 @@ const BackendInfo& ShearWarpRenderer::info() const {
   return info;
 }
 
+std::uint64_t ShearWarpRenderer::workingBytes(const RenderRequest& req,
+                                              const BackendOptions& options) const {
+  const ClassifiedVolume& cv = req.volume;
+  const shearwarp::ShearWarpFactorization view = shearwarp::factorizeView(
+      req.camera, req.width, req.height, cv.dims, cv.spacing, options.integer("supersample"));
+  return std::uint64_t(view.width) * std::uint64_t(view.height) *
+         std::uint64_t(cv.k + cv.t_channels) * sizeof(float);
+}
+
 LightIndependentImage ShearWarpRenderer::renderImpl(const RenderRequest& req,
                                                     const BackendOptions& options,
                                                     ProgressCounter& progress) const {

@@ -25,6 +25,9 @@ class ShearWarpRenderer final : public Renderer {
   const BackendInfo& info() const override;
 
  protected:
+  // The intermediate image, at volume resolution × supersample along the slice axes.
+  std::uint64_t workingBytes(const RenderRequest& request,
+                             const BackendOptions& options) const override;
   LightIndependentImage renderImpl(const RenderRequest& request, const BackendOptions& options,
                                    ProgressCounter& progress) const override;
 };
