@@ -73,7 +73,8 @@ struct Timings {
 
 nlohmann::json renderReport(const RenderOptions& o, const Scene& scene, const Renderer& renderer,
                             const SceneModel& chosen, const LightIndependentImage& image,
-                            const std::vector<RelitOutput>& outputs, const Timings& t) {
+                            const std::vector<RelitOutput>& outputs, const Timings& t,
+                            const std::vector<std::string>& notes) {
   const ColourModel& model = *chosen.model;
   nlohmann::json images = nlohmann::json::array();
   for (const auto& out : outputs) images.push_back({{"light", out.name}, {"file", out.file}});
@@ -96,6 +97,7 @@ nlohmann::json renderReport(const RenderOptions& o, const Scene& scene, const Re
       {"timings_ms",
        {{"load", t.load}, {"classify", t.classify}, {"render", t.render}, {"relight", t.relight}}},
       {"images", images},
+      {"notes", notes},
   };
 }
 
@@ -146,15 +148,19 @@ int runRender(const RenderOptions& o) {
 
   const auto t_render = clock::now();
   LightIndependentImage image;
+  std::vector<std::string> notes;  // shown after the progress bar, not through it
   {
     Progress progress("render", 100, o.quiet);
     int shown = 0;
     RenderRequest request = sceneRequest(scene, classified);
     request.memory_budget = volume_options.memory_budget;
+    request.note = [&](const std::string& note) { notes.push_back(note); };
     image = renderer->render(request, [&](double f) {
       while (shown < static_cast<int>(f * 100)) ++shown, progress.advance();
     });
   }
+  if (!o.quiet)
+    for (const auto& note : notes) fmt::print(stderr, "svr: note: {}\n", note);
   t.render = msSince(t_render);
 
   // From here on files are written: Ctrl-C waits for them to be complete (issue 9).
@@ -182,7 +188,7 @@ int runRender(const RenderOptions& o) {
                             {"scene", o.scene}, {"renderer", renderer->name()}});
   for (const auto& out : outputs)
     writeSrgbPng(out.rgb, image.width(), image.height(), (fs::path(o.out_dir) / out.file).string());
-  const nlohmann::json report = renderReport(o, scene, *renderer, chosen, image, outputs, t);
+  const nlohmann::json report = renderReport(o, scene, *renderer, chosen, image, outputs, t, notes);
   writeTextAtomically((fs::path(o.out_dir) / "render.json").string(), report.dump(1) + "\n");
   if (!o.quiet)
     fmt::print("{}: {} with {} ({}), {}×{}: load {:.0f} ms, classify {:.0f} ms, render {:.0f} ms, "

@@ -191,8 +191,6 @@ ClassifiedVolume classify(const Volume& volume, const TransferFunction& tf,
     cv.shading_field.resize(cv.values.size());
     for (std::size_t i = 0; i < cv.values.size(); ++i)
       cv.shading_field[i] = -std::log1p(-std::min(cv.alpha[cv.label[i]], 0.999999f));
-  } else {
-    cv.shading_field = cv.values;
   }
 
   markOccupiedBlocks(volume, cv);

@@ -10,6 +10,7 @@
 
 #include "renderers/core/classification.h"
 #include "renderers/core/renderer.h"
+#include "renderers/core/unit_power.h"
 
 namespace svr {
 
@@ -74,12 +75,12 @@ struct PhongSetup {
 
 // Normals are −∇f/|∇f|; where the gradient vanishes (inside a uniform region) there is no
 // surface, and the sample is lit fully and without highlight.
-inline PhongTerms phong(const PhongSetup& p, const float g[3]) {
+[[gnu::always_inline]] inline PhongTerms phong(const PhongSetup& p, const float g[3]) {
   const float len = std::sqrt(g[0] * g[0] + g[1] * g[1] + g[2] * g[2]);
   if (!(len > 1e-6f)) return {p.ambient + p.diffuse, 0.f};
   const float nl = (g[0] * p.light[0] + g[1] * p.light[1] + g[2] * p.light[2]) / len;
   const float nh = (g[0] * p.half[0] + g[1] * p.half[1] + g[2] * p.half[2]) / len;
-  return {p.ambient + p.diffuse * std::abs(nl), p.specular * std::pow(std::abs(nh), p.shininess)};
+  return {p.ambient + p.diffuse * std::abs(nl), p.specular * unitPower(std::min(std::abs(nh), 1.f), p.shininess)};
 }
 
 }  // namespace svr

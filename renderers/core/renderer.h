@@ -8,6 +8,7 @@
 // description, drives progress, calls the backend's renderImpl, and runs the one finite check,
 // which names backend, channel and pixel. A backend writes only renderImpl.
 
+#include <functional>
 #include <memory>
 #include <optional>
 #include <string>
@@ -41,6 +42,9 @@ struct RenderRequest {
   std::string options_source = "render.options";
   // The image and the backend's working memory must fit (checked before allocating).
   std::uint64_t memory_budget = defaultMemoryBudget();
+  // Told what a user should know about how the frame was made (a slower fallback taken because
+  // something did not fit); empty: not told.
+  std::function<void(const std::string&)> note;
 };
 
 class Renderer {

@@ -23,7 +23,9 @@ RenderRequest sceneRequest(const Scene& scene, const ClassifiedVolume& classifie
                        .termination = scene.termination,
                        .empty_space_skipping = true,
                        .options = scene.renderer_options,
-                       .options_source = scene.file + ": render.options"};
+                       .options_source = scene.file + ": render.options",
+                       .memory_budget = defaultMemoryBudget(),
+                       .note = nullptr};
 }
 
 }  // namespace svr

@@ -69,7 +69,7 @@ SplatVoxels::SplatVoxels(const ClassifiedVolume& cv) : dims_(cv.dims) {
     x = std::clamp(x, 0, d[0] - 1);
     y = std::clamp(y, 0, d[1] - 1);
     z = std::clamp(z, 0, d[2] - 1);
-    return cv.shading_field[x + static_cast<std::size_t>(d[0]) * (y + static_cast<std::size_t>(d[1]) * z)];
+    return cv.shadingField()[x + static_cast<std::size_t>(d[0]) * (y + static_cast<std::size_t>(d[1]) * z)];
   };
 #pragma omp parallel for schedule(static)
   for (int k = 0; k < nz; ++k)

@@ -1,6 +1,16 @@
 #pragma once
-// The ray-marching inner loop, templated on the channel count K (0 = dynamic) and on whether
-// transmittance is spectral (k channels) or scalar. Included only by raycast_renderer.cpp.
+// The ray-marching inner loop, templated on the channel count K (0 = dynamic), on whether
+// transmittance is spectral (k channels) or scalar, and on where normals come from (the
+// precomputed gradient volume, or central differences of the field on the fly when the
+// gradients do not fit the memory budget). Included by one translation unit per instruction
+// set (raycast_kernel_portable.cpp, raycast_kernel_avx2.cpp), each of which defines
+// SVR_RAYCAST_ISA, the namespace its instantiations live in, so that the two compilations of
+// the same templates never meet at link time. With AVX2 the eight corners of a trilinear cell
+// are one vector: one gather for the value, two for the gradient.
+//
+// Positions and steps are single precision inside the loop: sample positions are at most a
+// few thousand voxels from the origin, where float keeps 1/4000 voxel; the ray set-up (box
+// clipping, the first sample) stays in double so that the lattice does not depend on rounding.
 
 #include <algorithm>
 #include <cmath>
@@ -8,66 +18,240 @@
 
 #include "renderers/core/classification.h"
 #include "renderers/core/classified_sample.h"
+#include "renderers/core/gradient_volume.h"
+#include "renderers/core/occupancy_pyramid.h"
 #include "renderers/core/renderer.h"
+#include "renderers/raycast/sample_table.h"
 
-namespace svr::raycast {
+#if !defined(SVR_RAYCAST_ISA)
+#error "define SVR_RAYCAST_ISA (the instruction set's namespace) before including raycast_kernel.h"
+// SVR_RAYCAST_TARGET: the function attribute that compiles this namespace for the instruction
+// set (target("avx2,fma")); the helpers below are always_inline, so they are compiled inside
+// the kernels with it, and nothing compiled for AVX2 is ever shared with the portable path.
+// SVR_RAYCAST_AVX2: 1 where the AVX2 intrinsics paths are used.
+#endif
+#if !defined(SVR_RAYCAST_TARGET)
+#define SVR_RAYCAST_TARGET
+#endif
+#if SVR_RAYCAST_AVX2
+#include <immintrin.h>
+#endif
 
-inline constexpr int kMaxChannels = 128;
+#include "renderers/core/channel_widths.h"
+#include "renderers/raycast/raycast_kernels.h"
 
-struct TileJob {
-  const ClassifiedVolume* volume;
-  const RayGenerator* rays;
-  const RenderRequest* request;
-  LightIndependentImage* image;
-  int x0, y0, x1, y1;
+namespace svr::raycast::SVR_RAYCAST_ISA {
+
+#define SVR_RAYCAST_INLINE [[gnu::always_inline]] SVR_RAYCAST_TARGET inline
+
+// The eight voxels around a sample: corner n is origin o + Grid::off[n], weight w[n].
+struct Cell {
+  std::size_t o;
+  alignas(32) float w[8];
 };
 
-// Trilinear interpolation of a voxel field at p (voxel coordinates), clamped to the grid.
-struct Trilinear {
-  std::size_t i[8];
-  float w[8];
+// Index arithmetic of the voxel grid, set up once per tile: a point (voxel coordinates) is
+// clamped to the grid and its cell found with float operations only.
+struct Grid {
+  float hi[3];               // dims − 1
+  int last_base[3];          // the largest cell origin: dims − 2 (0 for a one-voxel axis)
+  std::size_t stride[3];     // index of a unit coordinate
+  alignas(32) std::int32_t off[8];  // index offsets of the corners (0 along a one-voxel axis)
+
+  SVR_RAYCAST_TARGET explicit Grid(const Dims& d) {
+    const std::size_t s[3] = {1, static_cast<std::size_t>(d[0]),
+                              static_cast<std::size_t>(d[0]) * d[1]};
+    std::size_t step[3];
+    for (int a = 0; a < 3; ++a) {
+      hi[a] = static_cast<float>(d[a] - 1);
+      last_base[a] = std::max(d[a] - 2, 0);
+      stride[a] = s[a];
+      step[a] = d[a] > 1 ? s[a] : 0;
+    }
+    for (int n = 0; n < 8; ++n)  // pickKernel checks these fit (3 × a slice < 2³¹)
+      off[n] = static_cast<std::int32_t>(((n & 1) ? step[0] : 0) + ((n & 2) ? step[1] : 0) +
+                                         ((n & 4) ? step[2] : 0));
+  }
+
+  SVR_RAYCAST_INLINE void cell(const float p[3], Cell& c) const {
+    float f[3];
+    c.o = 0;
+    for (int a = 0; a < 3; ++a) {
+      const float x = std::clamp(p[a], 0.f, hi[a]);
+      const int i0 = std::min(static_cast<int>(x), last_base[a]);
+      f[a] = x - static_cast<float>(i0);
+      c.o += static_cast<std::size_t>(i0) * stride[a];
+    }
+#if SVR_RAYCAST_AVX2
+    // Lane n: x weight f or 1 − f by bit 0 of n, y by bit 1, z by bit 2.
+    const __m256 wx = _mm256_fmadd_ps(_mm256_set1_ps(f[0]), _mm256_setr_ps(-1, 1, -1, 1, -1, 1, -1, 1),
+                                      _mm256_setr_ps(1, 0, 1, 0, 1, 0, 1, 0));
+    const __m256 wy = _mm256_fmadd_ps(_mm256_set1_ps(f[1]), _mm256_setr_ps(-1, -1, 1, 1, -1, -1, 1, 1),
+                                      _mm256_setr_ps(1, 1, 0, 0, 1, 1, 0, 0));
+    const __m256 wz = _mm256_fmadd_ps(_mm256_set1_ps(f[2]), _mm256_setr_ps(-1, -1, -1, -1, 1, 1, 1, 1),
+                                      _mm256_setr_ps(1, 1, 1, 1, 0, 0, 0, 0));
+    _mm256_store_ps(c.w, _mm256_mul_ps(_mm256_mul_ps(wx, wy), wz));
+#else
+    const float gx[2] = {1.f - f[0], f[0]}, gy[2] = {1.f - f[1], f[1]}, gz[2] = {1.f - f[2], f[2]};
+    for (int n = 0; n < 8; ++n) c.w[n] = gx[n & 1] * gy[(n >> 1) & 1] * gz[n >> 2];
+#endif
+  }
+
+  // The trilinear interpolation of a float field over a cell.
+  SVR_RAYCAST_INLINE float interpolate(const float* field, const Cell& c) const {
+#if SVR_RAYCAST_AVX2
+    const __m256 v = _mm256_i32gather_ps(field + c.o, _mm256_load_si256(reinterpret_cast<const __m256i*>(off)), 4);
+    return horizontalSum(_mm256_mul_ps(v, _mm256_load_ps(c.w)));
+#else
+    float v = 0.f;
+    for (int n = 0; n < 8; ++n) v += c.w[n] * field[c.o + off[n]];
+    return v;
+#endif
+  }
+
+  SVR_RAYCAST_INLINE float sample(const float* field, const float p[3]) const {
+    Cell c;
+    cell(p, c);
+    return interpolate(field, c);
+  }
+
+#if SVR_RAYCAST_AVX2
+  SVR_RAYCAST_INLINE static float horizontalSum(__m256 v) {
+    const __m128 h = _mm_add_ps(_mm256_castps256_ps128(v), _mm256_extractf128_ps(v, 1));
+    const __m128 q = _mm_add_ps(h, _mm_movehl_ps(h, h));
+    return _mm_cvtss_f32(_mm_add_ss(q, _mm_movehdup_ps(q)));
+  }
+#endif
 };
 
-inline void cellAt(const Dims& dims, const glm::dvec3& p, Trilinear& t) {
-  int base[3];
-  float f[3];
+// binOf's arithmetic in float, set up once per tile.
+struct BinScale {
+  float lo, scale, last;  // bin = clamp((v − lo) · scale, 0, last)
+  int last_lower, last_entry;
+  SVR_RAYCAST_TARGET explicit BinScale(const ClassifiedVolume& cv)
+      : lo(static_cast<float>(cv.value_lo)),
+        scale(static_cast<float>(cv.value_scale)),
+        last(static_cast<float>(cv.entries - 1)),
+        last_lower(std::max(cv.entries - 2, 0)),
+        last_entry(cv.entries - 1) {}
+};
+
+// The gradient of the shading field at a sample, world units.
+template <bool kPrecomputed>
+SVR_RAYCAST_INLINE void gradientAt(const ClassifiedVolume& cv, const GradientVolume* gv,
+                                   const Grid& grid, const Cell& cell, const float p[3],
+                                   const float half_inv_spacing[3], float g[3]) {
+  if constexpr (kPrecomputed) {
+    const std::int16_t* q = gv->q.data() + 3 * cell.o;
+#if SVR_RAYCAST_AVX2
+    // Corner n's (x, y) as one 32-bit lane, then its (z, next x); GradientVolume pads the end.
+    const __m256i off3 = _mm256_mullo_epi32(_mm256_load_si256(reinterpret_cast<const __m256i*>(grid.off)),
+                                            _mm256_set1_epi32(3));
+    const __m256i xy = _mm256_i32gather_epi32(reinterpret_cast<const int*>(q), off3, 2);
+    const __m256i z_ = _mm256_i32gather_epi32(reinterpret_cast<const int*>(q + 2), off3, 2);
+    const __m256 w = _mm256_load_ps(cell.w);
+    const __m256 gx = _mm256_cvtepi32_ps(_mm256_srai_epi32(_mm256_slli_epi32(xy, 16), 16));
+    const __m256 gy = _mm256_cvtepi32_ps(_mm256_srai_epi32(xy, 16));
+    const __m256 gz = _mm256_cvtepi32_ps(_mm256_srai_epi32(_mm256_slli_epi32(z_, 16), 16));
+    g[0] = Grid::horizontalSum(_mm256_mul_ps(gx, w)) * gv->scale;
+    g[1] = Grid::horizontalSum(_mm256_mul_ps(gy, w)) * gv->scale;
+    g[2] = Grid::horizontalSum(_mm256_mul_ps(gz, w)) * gv->scale;
+#else
+    float s[3] = {0.f, 0.f, 0.f};
+    for (int n = 0; n < 8; ++n) {
+      const std::int16_t* v = q + 3 * static_cast<std::size_t>(grid.off[n]);
+      for (int a = 0; a < 3; ++a) s[a] += cell.w[n] * static_cast<float>(v[a]);
+    }
+    for (int a = 0; a < 3; ++a) g[a] = s[a] * gv->scale;
+#endif
+  } else {
+    const float* f = cv.shadingField().data();
+    for (int a = 0; a < 3; ++a) {
+      float hi[3] = {p[0], p[1], p[2]}, lo[3] = {p[0], p[1], p[2]};
+      hi[a] += 1.f;
+      lo[a] -= 1.f;
+      g[a] = (grid.sample(f, hi) - grid.sample(f, lo)) * half_inv_spacing[a];
+    }
+  }
+}
+
+// A sample's blended row of the sample table: acc = Σ w · row(e) over the entries around it
+// (two bins of a scalar volume's value, or the eight corners' labels).
+SVR_RAYCAST_INLINE void blendSample(const ClassifiedVolume& cv, const SampleTable& table,
+                                    const Grid& grid, const Cell& cell, const BinScale& bins,
+                                    int width, float* acc) {
+  if (cv.labels) {
+    for (int j = 0; j < width; ++j) acc[j] = 0.f;
+    for (int n = 0; n < 8; ++n) {
+      const float* row = table.row(cv.label[cell.o + grid.off[n]]);
+      for (int j = 0; j < width; ++j) acc[j] += cell.w[n] * row[j];
+    }
+  } else {
+    const float v = grid.interpolate(cv.values.data(), cell);
+    const float bin = std::clamp((v - bins.lo) * bins.scale, 0.f, bins.last);
+    const int e0 = std::min(static_cast<int>(bin), bins.last_lower);
+    const int e1 = std::min(e0 + 1, bins.last_entry);
+    const float f = bin - static_cast<float>(e0);
+    const float* r0 = table.row(e0);
+    const float* r1 = table.row(e1);
+    for (int j = 0; j < width; ++j) acc[j] = r0[j] + f * (r1[j] - r0[j]);
+  }
+}
+
+// The ray's parameter interval inside the grid's box [0, dims − 1] (voxel coordinates).
+SVR_RAYCAST_INLINE bool clipToGrid(const Dims& dims, const glm::dvec3& o, const glm::dvec3& d,
+                                   double& t0, double& t1) {
+  t0 = 0.0, t1 = INFINITY;
   for (int a = 0; a < 3; ++a) {
-    const double c = std::clamp(p[a], 0.0, static_cast<double>(dims[a] - 1));
-    int i0 = static_cast<int>(c);
-    if (i0 >= dims[a] - 1) i0 = std::max(dims[a] - 2, 0);
-    base[a] = i0;
-    f[a] = dims[a] > 1 ? static_cast<float>(c - i0) : 0.0f;
+    const double lo = 0.0, hi = dims[a] - 1;
+    if (std::abs(d[a]) < 1e-300) {
+      if (o[a] < lo || o[a] > hi) return false;
+    } else {
+      double ta = (lo - o[a]) / d[a], tb = (hi - o[a]) / d[a];
+      if (ta > tb) std::swap(ta, tb);
+      t0 = std::max(t0, ta);
+      t1 = std::min(t1, tb);
+    }
   }
-  const std::size_t sx = 1, sy = dims[0], sz = static_cast<std::size_t>(dims[0]) * dims[1];
-  const std::size_t o = base[0] * sx + base[1] * sy + base[2] * sz;
-  const std::size_t dx = dims[0] > 1 ? sx : 0, dy = dims[1] > 1 ? sy : 0, dz = dims[2] > 1 ? sz : 0;
-  for (int c = 0; c < 8; ++c) {
-    t.i[c] = o + ((c & 1) ? dx : 0) + ((c & 2) ? dy : 0) + ((c & 4) ? dz : 0);
-    t.w[c] = ((c & 1) ? f[0] : 1 - f[0]) * ((c & 2) ? f[1] : 1 - f[1]) * ((c & 4) ? f[2] : 1 - f[2]);
-  }
+  return t1 > t0;
 }
 
-inline float sampleField(const std::vector<float>& field, const Dims& dims, const glm::dvec3& p) {
-  Trilinear t;
-  cellAt(dims, p, t);
-  float v = 0.f;
-  for (int c = 0; c < 8; ++c) v += t.w[c] * field[t.i[c]];
-  return v;
+// The index of the first lattice sample past the exit of the empty block of 2^shift voxels
+// holding p; inv_d = 1 / d per axis (inf on an axis the ray runs parallel to).
+SVR_RAYCAST_INLINE long skipEmptyBlock(int shift, const float p[3], const float inv_d[3], long i,
+                                       double t, double first, double step) {
+  const float size = static_cast<float>(1 << shift);
+  float exit = INFINITY;
+  for (int a = 0; a < 3; ++a) {
+    const float lo = static_cast<float>(static_cast<int>(std::max(p[a], 0.f)) >> shift) * size;
+    const float bound = inv_d[a] > 0.f ? lo + size : lo;
+    if (std::isfinite(inv_d[a])) exit = std::min(exit, (bound - p[a]) * inv_d[a]);
+  }
+  const double target = t + std::max(static_cast<double>(exit), 0.0);
+  return std::max(static_cast<long>(std::ceil((target - first) / step)), i + 1);
 }
 
-template <int K, bool kSpectralT>
-void traceTile(const TileJob& job) {
+template <int K, bool kSpectralT, bool kPrecomputedGradients>
+SVR_RAYCAST_TARGET void traceTile(const TileJob& job) {
   const ClassifiedVolume& cv = *job.volume;
   const RenderRequest& req = *job.request;
+  const SampleTable& table = *job.table;
   const int k = K > 0 ? K : cv.k;
   constexpr int kCap = K > 0 ? K : kMaxChannels;
   const int kt = kSpectralT ? k : 1;
+  const int width = 2 + k + kt;  // a sample-table row
+  if (width < 3) __builtin_unreachable();  // k ≥ 1: tells the compiler acc[0] is always set
+  constexpr int kWidthCap = 2 + kCap + (kSpectralT ? kCap : 1);
   const Dims& dims = cv.dims;
+  const Grid grid(dims);
+  const BinScale bins(cv);
   const glm::dvec3 inv_spacing = 1.0 / cv.spacing;
+  const float half_inv_spacing[3] = {static_cast<float>(0.5 * inv_spacing.x),
+                                     static_cast<float>(0.5 * inv_spacing.y),
+                                     static_cast<float>(0.5 * inv_spacing.z)};
   const glm::dvec3 centre = 0.5 * glm::dvec3(dims[0] - 1, dims[1] - 1, dims[2] - 1);
   const double step = cv.step_world;
   const float threshold = static_cast<float>(req.termination);
-  const int B = ClassifiedVolume::kBlock;
   const std::size_t pixels = job.image->pixels();
   float* out = job.image->planeFloat(0).data();
 
@@ -80,89 +264,53 @@ void traceTile(const TileJob& job) {
       const Ray ray = job.rays->ray(x + 0.5, y + 0.5);
       const glm::dvec3 o = ray.origin * inv_spacing + centre;
       const glm::dvec3 d = ray.direction * inv_spacing;  // voxels per world unit
-      double t0 = 0.0, t1 = INFINITY;
-      bool hit = true;
-      for (int a = 0; a < 3 && hit; ++a) {
-        const double lo = 0.0, hi = dims[a] - 1;
-        if (std::abs(d[a]) < 1e-300) {
-          hit = o[a] >= lo && o[a] <= hi;
-        } else {
-          double ta = (lo - o[a]) / d[a], tb = (hi - o[a]) / d[a];
-          if (ta > tb) std::swap(ta, tb);
-          t0 = std::max(t0, ta);
-          t1 = std::min(t1, tb);
-        }
-      }
-      if (hit && t1 > t0) {
+      double t0, t1;
+      if (clipToGrid(dims, o, d, t0, t1)) {
         const glm::dvec3 view = -ray.direction;
         const glm::dvec3 light = req.light_direction ? *req.light_direction : view;
-        const glm::dvec3 half = glm::normalize(light + view);
-        const PhongSetup phong_setup(req.shading, light, half);
+        const PhongSetup phong_setup(req.shading, light, glm::normalize(light + view));
         const double first = t0 + 0.5 * step;
-        for (double t = first; t < t1;) {
-          const glm::dvec3 p = o + t * d;
+        float of[3], df[3], inv_d[3];
+        for (int a = 0; a < 3; ++a) {
+          of[a] = static_cast<float>(o[a]);
+          df[a] = static_cast<float>(d[a]);
+          inv_d[a] = std::abs(df[a]) > 1e-30f ? 1.f / df[a] : INFINITY;
+        }
+        const float first_f = static_cast<float>(first), step_f = static_cast<float>(step);
+        const long samples = static_cast<long>(std::ceil((t1 - first) / step));
+        for (long i = 0; i < samples;) {
+          const float t = first_f + static_cast<float>(i) * step_f;
+          const float p[3] = {of[0] + t * df[0], of[1] + t * df[1], of[2] + t * df[2]};
           if (req.empty_space_skipping) {
-            int b[3];
+            int c[3];
             for (int a = 0; a < 3; ++a)
-              b[a] = std::clamp(static_cast<int>(p[a]) / B, 0, cv.blocks[a] - 1);
-            if (!cv.blockOccupied(b[0], b[1], b[2])) {
-              // Jump to the block's exit, staying on the same sample lattice.
-              double exit = INFINITY;
-              for (int a = 0; a < 3; ++a) {
-                if (d[a] > 1e-300) exit = std::min(exit, ((b[a] + 1) * B - p[a]) / d[a]);
-                else if (d[a] < -1e-300) exit = std::min(exit, (b[a] * B - p[a]) / d[a]);
-              }
-              const double target = t + std::max(exit, 0.0);
-              t = first + std::max(std::ceil((target - first) / step), 1.0 + std::floor((t - first) / step)) * step;
+              c[a] = static_cast<int>(std::clamp(p[a], 0.f, grid.hi[a]));
+            const int level = job.occupancy->emptyLevel(c[0], c[1], c[2]);
+            if (level >= 0) {
+              i = skipEmptyBlock(job.occupancy->shift(level), p, inv_d, i, t, first, step);
               continue;
             }
           }
-          // Classified sample: alpha, reflectance, specular weight, transmission.
-          float alpha, spec_w, refl[kCap], trans[kSpectralT ? kCap : 1];
-          Trilinear cell;
-          cellAt(dims, p, cell);
-          if (cv.labels) {
-            // Classify each corner's label, then blend the classified entries.
-            int entry[8];
-            for (int n = 0; n < 8; ++n) entry[n] = cv.label[cell.i[n]];
-            blendEntries(cv, cv.alpha.data(), cv.transmission.data(), entry, cell.w, 8, k, kt,
-                         alpha, spec_w, refl, trans);
-          } else {
-            float v = 0.f;
-            for (int n = 0; n < 8; ++n) v += cell.w[n] * cv.values[cell.i[n]];
-            int entry[2];
-            float frac;
-            binOf(cv, v, entry[0], entry[1], frac);
-            const float w[2] = {1.f - frac, frac};
-            blendEntries(cv, cv.alpha.data(), cv.transmission.data(), entry, w, 2, k, kt, alpha,
-                         spec_w, refl, trans);
-          }
-          if (alpha > 0.f) {
-            // Phong with the gradient of the shading field (central differences, world units).
+          Cell cell;
+          grid.cell(p, cell);
+          float acc[kWidthCap];
+          blendSample(cv, table, grid, cell, bins, width, acc);
+          if (acc[0] > 0.f) {  // α
             float g[3];
-            for (int a = 0; a < 3; ++a) {
-              glm::dvec3 e(0.0);
-              e[a] = 1.0;
-              g[a] = static_cast<float>((sampleField(cv.shading_field, dims, p + e) -
-                                         sampleField(cv.shading_field, dims, p - e)) *
-                                        0.5 * inv_spacing[a]);
-            }
+            gradientAt<kPrecomputedGradients>(cv, job.gradients, grid, cell, p, half_inv_spacing,
+                                              g);
             const auto [shade, highlight] = phong(phong_setup, g);
-            const float hs = highlight * spec_w;
-            if constexpr (kSpectralT) {
-              for (int c = 0; c < k; ++c)
-                S[c] += T[c] * alpha * (refl[c] * shade + cv.white[c] * hs);
-            } else {
-              for (int c = 0; c < k; ++c) S[c] += T[0] * alpha * (refl[c] * shade + cv.white[c] * hs);
-            }
+            const float hs = highlight * acc[1];
+            for (int c = 0; c < k; ++c)
+              S[c] += T[kSpectralT ? c : 0] * (acc[2 + c] * shade + cv.white[c] * hs);
           }
           float tmax = 0.f;
           for (int c = 0; c < kt; ++c) {
-            T[c] *= trans[c];
+            T[c] *= acc[2 + k + c];
             tmax = std::max(tmax, T[c]);
           }
           if (tmax < threshold) break;
-          t += step;
+          ++i;
         }
       }
       const std::size_t px = static_cast<std::size_t>(y) * job.image->width() + x;
@@ -171,4 +319,20 @@ void traceTile(const TileJob& job) {
     }
 }
 
-}  // namespace svr::raycast
+#undef SVR_RAYCAST_INLINE
+
+// The kernel for a key: pickWidth's compiled widths, else the dynamic path.
+template <bool kSpectralT, bool kPrecomputed>
+TileFn pickFor(const KernelKey& key) {
+  return pickWidth(key.k, key.dynamic_width, []<int N>() -> TileFn {
+    return &traceTile<N, kSpectralT, kPrecomputed>;
+  });
+}
+
+inline TileFn pickKernel(const KernelKey& key) {
+  if (key.t_channels > 1)
+    return key.precomputed_gradients ? pickFor<true, true>(key) : pickFor<true, false>(key);
+  return key.precomputed_gradients ? pickFor<false, true>(key) : pickFor<false, false>(key);
+}
+
+}  // namespace svr::raycast::SVR_RAYCAST_ISA

@@ -1,37 +1,82 @@
 #include "renderers/raycast/raycast_renderer.h"
 
-#include "renderers/core/channel_widths.h"
-#include "renderers/raycast/raycast_kernel.h"
+#include <fmt/format.h>
+
+#include "renderers/raycast/raycast_kernels.h"
 #include "renderers/registry.h"
 
 namespace svr {
 namespace {
 
-using TileFn = void (*)(const raycast::TileJob&);
+// The kernel for this CPU, chosen here once per render: AVX2 + FMA where the CPU has them
+// (spectral's availableKernelIsas, the relight kernel's test), the corner offsets of a cell
+// fit the gathers' 32-bit lanes and the portable path is not forced; the portable compilation
+// otherwise.
+raycast::TileFn pickKernel(const raycast::KernelKey& key, const Dims& dims,
+                           const KernelForce& force) {
+  const bool small_slices = 3.0 * dims[0] * dims[1] < 2147483647.0;
+  const bool avx2 = raycast::avx2::compiled() && availableKernelIsas().back() == KernelIsa::kAvx2;
+  if (small_slices && avx2 && force.isa.value_or(KernelIsa::kAvx2) == KernelIsa::kAvx2)
+    return raycast::avx2::pick(key);
+  return raycast::portable::pick(key);
+}
 
-template <bool kSpectralT>
-TileFn pickKernel(int k, bool dynamic_width) {
-  return pickWidth(k, dynamic_width,
-                   []<int N>() -> TileFn { return &raycast::traceTile<N, kSpectralT>; });
+// Bytes the classification already holds for the renderers (values, shading field, labels).
+std::uint64_t classifiedBytes(const ClassifiedVolume& cv) {
+  return cv.values.size() * sizeof(float) + cv.shading_field.size() * sizeof(float) +
+         cv.label.size() * sizeof(std::uint16_t);
+}
+
+// The precomputed gradients when they are asked for or fit beside what is already held, else
+// null (on-the-fly central differences, with a note saying why).
+std::shared_ptr<const GradientVolume> gradientsFor(const RenderRequest& req,
+                                                   const std::string& mode) {
+  const ClassifiedVolume& cv = req.volume;
+  if (mode == "on-the-fly") return nullptr;
+  const std::uint64_t need = GradientVolume::bytesFor(cv.dims);
+  const std::uint64_t held =
+      classifiedBytes(cv) +
+      LightIndependentImage::bytesFor(req.width, req.height, cv.k, cv.t_channels);
+  if (mode == "auto" && held + need > req.memory_budget) {
+    if (req.note)
+      req.note(fmt::format("raycast: gradients computed per sample (slower): precomputing them "
+                           "needs {} beside the {} held, over the memory budget of {}",
+                           formatBytes(need), formatBytes(held), formatBytes(req.memory_budget)));
+    return nullptr;
+  }
+  checkMemoryBudget(held + need, req.memory_budget,
+                    fmt::format("raycast: precomputed gradients of {}×{}×{} voxels", cv.dims[0],
+                                cv.dims[1], cv.dims[2]));
+  return gradientsOf(cv);
 }
 
 }  // namespace
 
 const BackendInfo& RaycastRenderer::info() const {
   static const BackendInfo info{
-      "raycast", "a ray per pixel, trilinear samples, Phong; the reference backend",
+      "raycast",
+      "a ray per pixel, trilinear samples, Phong; the reference backend",
       {.perspective = true, .spectral_transmittance = true, .max_channels = raycast::kMaxChannels},
-      {}};
+      {OptionSpec::choice("gradients", {"auto", "precomputed", "on-the-fly"},
+                          "normals from gradients precomputed at the voxels (6 bytes a voxel, "
+                          "kept with the classification) or central differences per sample; "
+                          "auto precomputes when they fit the memory budget")}};
   return info;
 }
 
-LightIndependentImage RaycastRenderer::renderImpl(const RenderRequest& req, const BackendOptions&,
+LightIndependentImage RaycastRenderer::renderImpl(const RenderRequest& req,
+                                                  const BackendOptions& options,
                                                   ProgressCounter& progress) const {
   const ClassifiedVolume& cv = req.volume;
+  const auto gradients = gradientsFor(req, options.choice("gradients"));
+  const auto table = raycast::sampleTableOf(cv);
+  const auto occupancy = occupancyOf(cv);
   LightIndependentImage image(req.width, req.height, cv.k, cv.t_channels);
   const RayGenerator rays(req.camera, req.width, req.height);
-  const TileFn fn = cv.t_channels > 1 ? pickKernel<true>(cv.k, dynamic_width_)
-                                      : pickKernel<false>(cv.k, dynamic_width_);
+  const raycast::TileFn fn = pickKernel(
+      {.k = cv.k, .t_channels = cv.t_channels, .precomputed_gradients = gradients != nullptr,
+       .dynamic_width = force_.dynamic_width},
+      cv.dims, force_);
   constexpr int kTile = 16;
   const int tiles_x = (req.width + kTile - 1) / kTile, tiles_y = (req.height + kTile - 1) / kTile;
   const int tiles = tiles_x * tiles_y;
@@ -39,7 +84,7 @@ LightIndependentImage RaycastRenderer::renderImpl(const RenderRequest& req, cons
 #pragma omp parallel for schedule(dynamic)
   for (int t = 0; t < tiles; ++t) {
     const int tx = t % tiles_x, ty = t / tiles_x;
-    raycast::TileJob job{&cv, &rays, &req, &image, tx * kTile, ty * kTile,
+    raycast::TileJob job{&cv, gradients.get(), table.get(), occupancy.get(), &rays, &req, &image, tx * kTile, ty * kTile,
                          std::min((tx + 1) * kTile, req.width),
                          std::min((ty + 1) * kTile, req.height)};
     fn(job);

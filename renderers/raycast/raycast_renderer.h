@@ -1,18 +1,21 @@
 #pragma once
-// The reference backend (DESIGN §5): a ray per pixel, front to back, trilinear samples,
-// gradients by central differences, Phong shading, early ray termination, empty-space skipping
-// over min–max blocks, OpenMP over image tiles; orthographic and perspective cameras.
+// The reference backend (DESIGN §5): a ray per pixel, front to back, trilinear samples, Phong
+// shading with gradients precomputed at the voxels (core/gradient_volume.h; central differences
+// on the fly when they do not fit the memory budget), early ray termination, empty-space
+// skipping over min–max blocks, OpenMP over image tiles; orthographic and perspective cameras.
 // The inner loop is compiled for the channel counts of core/channel_widths.h
 // (raycast_kernel.h); spectral:31/81 and other counts take the dynamic path.
 
 #include "renderers/core/renderer.h"
+#include "spectral/relight_kernel.h"
 
 namespace svr {
 
 class RaycastRenderer final : public Renderer {
  public:
-  // dynamic_width: always use the dynamic-k kernel (tests compare it with the fixed ones).
-  explicit RaycastRenderer(bool dynamic_width = false) : dynamic_width_(dynamic_width) {}
+  // force: always the dynamic-k kernel, or one instruction set's kernels (tests compare them
+  // with the fixed widths and the widest instruction set, which are the default).
+  explicit RaycastRenderer(KernelForce force = {}) : force_(force) {}
   const BackendInfo& info() const override;
 
  protected:
@@ -20,7 +23,7 @@ class RaycastRenderer final : public Renderer {
                                    ProgressCounter& progress) const override;
 
  private:
-  bool dynamic_width_;
+  KernelForce force_;
 };
 
 }  // namespace svr

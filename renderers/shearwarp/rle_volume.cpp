@@ -22,8 +22,8 @@ void gradientAt(const ClassifiedVolume& cv, const int p[3], float g[3]) {
     int lo[3] = {p[0], p[1], p[2]}, hi[3] = {p[0], p[1], p[2]};
     lo[a] = std::max(p[a] - 1, 0);
     hi[a] = std::min(p[a] + 1, cv.dims[a] - 1);
-    const float f1 = cv.shading_field[indexOf(cv.dims, hi[0], hi[1], hi[2])];
-    const float f0 = cv.shading_field[indexOf(cv.dims, lo[0], lo[1], lo[2])];
+    const float f1 = cv.shadingField()[indexOf(cv.dims, hi[0], hi[1], hi[2])];
+    const float f0 = cv.shadingField()[indexOf(cv.dims, lo[0], lo[1], lo[2])];
     g[a] = static_cast<float>((f1 - f0) * 0.5 / cv.spacing[a]);
   }
 }

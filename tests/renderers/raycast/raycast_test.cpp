@@ -117,8 +117,8 @@ TEST(Raycast, FixedWidthKernelsEqualTheDynamicPath) {
   Scene scene = test::phantomScene();
   for (int k : {3, 4, 6, 8}) {
     const auto model = makeSpectralModel(test::rendererObserver(), k);
-    const auto fixed = renderScene(scene, *model, RaycastRenderer(false));
-    const auto dynamic = renderScene(scene, *model, RaycastRenderer(true));
+    const auto fixed = renderScene(scene, *model, RaycastRenderer());
+    const auto dynamic = renderScene(scene, *model, RaycastRenderer({.dynamic_width = true, .isa = std::nullopt}));
     ASSERT_EQ(fixed.planes(), dynamic.planes());
     ASSERT_EQ(fixed.transmittanceChannels(), k);  // the phantom has a spectral absorber
     for (int p = 0; p < fixed.planes(); ++p)

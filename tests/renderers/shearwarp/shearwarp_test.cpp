@@ -127,7 +127,7 @@ void expectRoundTrip(const ClassifiedVolume& cv) {
               lo[a] = std::max(q[a] - 1, 0);
               hi[a] = std::min(q[a] + 1, cv.dims[a] - 1);
               const auto at = [&](const int* r) {
-                return cv.shading_field[(static_cast<std::size_t>(r[2]) * cv.dims[1] + r[1]) *
+                return cv.shadingField()[(static_cast<std::size_t>(r[2]) * cv.dims[1] + r[1]) *
                                             cv.dims[0] +
                                         r[0]];
               };
