@@ -62,15 +62,25 @@ struct PhongTerms {
 struct PhongSetup {
   float light[3], half[3];
   float ambient, diffuse, specular, shininess;
+  // Below this |n·h| the highlight |n·h|^shininess is under 2⁻²⁴ — less than float rounding of
+  // the lit colour it is added to — and is taken as 0 without evaluating the power.
+  float highlight_floor;
   PhongSetup(const Shading& s, const glm::dvec3& light_dir, const glm::dvec3& half_dir)
-      : light{static_cast<float>(light_dir.x), static_cast<float>(light_dir.y),
-              static_cast<float>(light_dir.z)},
-        half{static_cast<float>(half_dir.x), static_cast<float>(half_dir.y),
-             static_cast<float>(half_dir.z)},
-        ambient(static_cast<float>(s.ambient)),
+      : ambient(static_cast<float>(s.ambient)),
         diffuse(static_cast<float>(s.diffuse)),
         specular(static_cast<float>(s.specular)),
-        shininess(static_cast<float>(s.shininess)) {}
+        shininess(static_cast<float>(s.shininess)),
+        highlight_floor(s.shininess > 0 ? static_cast<float>(std::pow(0x1p-24, 1.0 / s.shininess))
+                                        : 0.f) {
+    setDirections(light_dir, half_dir);
+  }
+  // Another view direction (a perspective camera's next ray), the same shading.
+  void setDirections(const glm::dvec3& light_dir, const glm::dvec3& half_dir) {
+    for (int a = 0; a < 3; ++a) {
+      light[a] = static_cast<float>(light_dir[a]);
+      half[a] = static_cast<float>(half_dir[a]);
+    }
+  }
 };
 
 // Normals are −∇f/|∇f|; where the gradient vanishes (inside a uniform region) there is no
@@ -78,9 +88,12 @@ struct PhongSetup {
 [[gnu::always_inline]] inline PhongTerms phong(const PhongSetup& p, const float g[3]) {
   const float len = std::sqrt(g[0] * g[0] + g[1] * g[1] + g[2] * g[2]);
   if (!(len > 1e-6f)) return {p.ambient + p.diffuse, 0.f};
-  const float nl = (g[0] * p.light[0] + g[1] * p.light[1] + g[2] * p.light[2]) / len;
-  const float nh = (g[0] * p.half[0] + g[1] * p.half[1] + g[2] * p.half[2]) / len;
-  return {p.ambient + p.diffuse * std::abs(nl), p.specular * unitPower(std::min(std::abs(nh), 1.f), p.shininess)};
+  const float inv_len = 1.f / len;  // one division for both cosines
+  const float nl = (g[0] * p.light[0] + g[1] * p.light[1] + g[2] * p.light[2]) * inv_len;
+  const float nh = (g[0] * p.half[0] + g[1] * p.half[1] + g[2] * p.half[2]) * inv_len;
+  const float cos_h = std::min(std::abs(nh), 1.f);
+  return {p.ambient + p.diffuse * std::abs(nl),
+          cos_h > p.highlight_floor ? p.specular * unitPower(cos_h, p.shininess) : 0.f};
 }
 
 }  // namespace svr

@@ -153,9 +153,16 @@ SVR_RAYCAST_INLINE void gradientAt(const ClassifiedVolume& cv, const GradientVol
     const __m256 gx = _mm256_cvtepi32_ps(_mm256_srai_epi32(_mm256_slli_epi32(xy, 16), 16));
     const __m256 gy = _mm256_cvtepi32_ps(_mm256_srai_epi32(xy, 16));
     const __m256 gz = _mm256_cvtepi32_ps(_mm256_srai_epi32(_mm256_slli_epi32(z_, 16), 16));
-    g[0] = Grid::horizontalSum(_mm256_mul_ps(gx, w)) * gv->scale;
-    g[1] = Grid::horizontalSum(_mm256_mul_ps(gy, w)) * gv->scale;
-    g[2] = Grid::horizontalSum(_mm256_mul_ps(gz, w)) * gv->scale;
+    // The three dot products with the weights, reduced together: lanes 0, 1, 2 = x, y, z.
+    const __m256 xy_sum = _mm256_hadd_ps(_mm256_mul_ps(gx, w), _mm256_mul_ps(gy, w));
+    const __m256 z_sum = _mm256_hadd_ps(_mm256_mul_ps(gz, w), _mm256_setzero_ps());
+    const __m256 quad = _mm256_hadd_ps(xy_sum, z_sum);  // per 128-bit half: x, y, z, 0
+    const __m128 total = _mm_mul_ps(
+        _mm_add_ps(_mm256_castps256_ps128(quad), _mm256_extractf128_ps(quad, 1)),
+        _mm_set1_ps(gv->scale));
+    alignas(16) float lanes[4];
+    _mm_store_ps(lanes, total);
+    g[0] = lanes[0], g[1] = lanes[1], g[2] = lanes[2];
 #else
     float s[3] = {0.f, 0.f, 0.f};
     for (int n = 0; n < 8; ++n) {
@@ -176,14 +183,17 @@ SVR_RAYCAST_INLINE void gradientAt(const ClassifiedVolume& cv, const GradientVol
 }
 
 // A sample's blended row of the sample table: acc = Σ w · row(e) over the entries around it
-// (two bins of a scalar volume's value, or the eight corners' labels).
+// (two bins of a scalar volume's value, or the eight corners' labels). kStride: the table's
+// padded row length when k is fixed (the loops then have a compile-time count), else 0.
+template <int kStride>
 SVR_RAYCAST_INLINE void blendSample(const ClassifiedVolume& cv, const SampleTable& table,
                                     const Grid& grid, const Cell& cell, const BinScale& bins,
-                                    int width, float* acc) {
+                                    int width_, float* acc) {
+  const int width = kStride > 0 ? kStride : width_;
   if (cv.labels) {
     for (int j = 0; j < width; ++j) acc[j] = 0.f;
     for (int n = 0; n < 8; ++n) {
-      const float* row = table.row(cv.label[cell.o + grid.off[n]]);
+      const float* row = table.row<kStride>(cv.label[cell.o + grid.off[n]]);
       for (int j = 0; j < width; ++j) acc[j] += cell.w[n] * row[j];
     }
   } else {
@@ -192,8 +202,8 @@ SVR_RAYCAST_INLINE void blendSample(const ClassifiedVolume& cv, const SampleTabl
     const int e0 = std::min(static_cast<int>(bin), bins.last_lower);
     const int e1 = std::min(e0 + 1, bins.last_entry);
     const float f = bin - static_cast<float>(e0);
-    const float* r0 = table.row(e0);
-    const float* r1 = table.row(e1);
+    const float* r0 = table.row<kStride>(e0);
+    const float* r1 = table.row<kStride>(e1);
     for (int j = 0; j < width; ++j) acc[j] = r0[j] + f * (r1[j] - r0[j]);
   }
 }
@@ -216,9 +226,9 @@ SVR_RAYCAST_INLINE bool clipToGrid(const Dims& dims, const glm::dvec3& o, const 
   return t1 > t0;
 }
 
-// The index of the first lattice sample past the exit of the empty block of 2^shift voxels
-// holding p; inv_d = 1 / d per axis (inf on an axis the ray runs parallel to).
-SVR_RAYCAST_INLINE long skipEmptyBlock(int shift, const float p[3], const float inv_d[3], long i,
+// The index of the first lattice sample past the exit of the block of 2^shift voxels holding p
+// (sample i, at t); inv_d = 1 / d per axis (inf on an axis the ray runs parallel to).
+SVR_RAYCAST_INLINE long firstSamplePast(int shift, const float p[3], const float inv_d[3], long i,
                                        double t, double first, double step) {
   const float size = static_cast<float>(1 << shift);
   float exit = INFINITY;
@@ -241,7 +251,8 @@ SVR_RAYCAST_TARGET void traceTile(const TileJob& job) {
   const int kt = kSpectralT ? k : 1;
   const int width = 2 + k + kt;  // a sample-table row
   if (width < 3) __builtin_unreachable();  // k ≥ 1: tells the compiler acc[0] is always set
-  constexpr int kWidthCap = 2 + kCap + (kSpectralT ? kCap : 1);
+  constexpr int kStride = K > 0 ? SampleTable::strideFor(2 + K + (kSpectralT ? K : 1)) : 0;
+  constexpr int kWidthCap = SampleTable::strideFor(2 + kCap + (kSpectralT ? kCap : 1));
   const Dims& dims = cv.dims;
   const Grid grid(dims);
   const BinScale bins(cv);
@@ -255,6 +266,8 @@ SVR_RAYCAST_TARGET void traceTile(const TileJob& job) {
   const std::size_t pixels = job.image->pixels();
   float* out = job.image->planeFloat(0).data();
 
+  // The shading set up once (its highlight floor takes a pow); directions change per ray.
+  PhongSetup phong_setup(req.shading, glm::dvec3(0.0, 0.0, 1.0), glm::dvec3(0.0, 0.0, 1.0));
   for (int y = job.y0; y < job.y1; ++y)
     for (int x = job.x0; x < job.x1; ++x) {
       float S[kCap], T[kSpectralT ? kCap : 1];
@@ -268,7 +281,7 @@ SVR_RAYCAST_TARGET void traceTile(const TileJob& job) {
       if (clipToGrid(dims, o, d, t0, t1)) {
         const glm::dvec3 view = -ray.direction;
         const glm::dvec3 light = req.light_direction ? *req.light_direction : view;
-        const PhongSetup phong_setup(req.shading, light, glm::normalize(light + view));
+        phong_setup.setDirections(light, glm::normalize(light + view));
         const double first = t0 + 0.5 * step;
         float of[3], df[3], inv_d[3];
         for (int a = 0; a < 3; ++a) {
@@ -278,23 +291,27 @@ SVR_RAYCAST_TARGET void traceTile(const TileJob& job) {
         }
         const float first_f = static_cast<float>(first), step_f = static_cast<float>(step);
         const long samples = static_cast<long>(std::ceil((t1 - first) / step));
+        long occupied_until = 0;
         for (long i = 0; i < samples;) {
           const float t = first_f + static_cast<float>(i) * step_f;
           const float p[3] = {of[0] + t * df[0], of[1] + t * df[1], of[2] + t * df[2]};
-          if (req.empty_space_skipping) {
+          // Empty space: jump past the largest empty block; in an occupied block, look again
+          // only once the ray has left it.
+          if (req.empty_space_skipping && i >= occupied_until) {
             int c[3];
             for (int a = 0; a < 3; ++a)
               c[a] = static_cast<int>(std::clamp(p[a], 0.f, grid.hi[a]));
             const int level = job.occupancy->emptyLevel(c[0], c[1], c[2]);
             if (level >= 0) {
-              i = skipEmptyBlock(job.occupancy->shift(level), p, inv_d, i, t, first, step);
+              i = firstSamplePast(job.occupancy->shift(level), p, inv_d, i, t, first, step);
               continue;
             }
+            occupied_until = firstSamplePast(job.occupancy->shift(0), p, inv_d, i, t, first, step);
           }
           Cell cell;
           grid.cell(p, cell);
           float acc[kWidthCap];
-          blendSample(cv, table, grid, cell, bins, width, acc);
+          blendSample<kStride>(cv, table, grid, cell, bins, width, acc);
           if (acc[0] > 0.f) {  // α
             float g[3];
             gradientAt<kPrecomputedGradients>(cv, job.gradients, grid, cell, p, half_inv_spacing,
