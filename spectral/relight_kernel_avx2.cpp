@@ -85,12 +85,13 @@ long relightFusedSrgb(const RelightJob& job) {
       g = _mm256_fmadd_ps(mg[p], v, g);
       b = _mm256_fmadd_ps(mb[p], v, b);
     }
-    // x − x is NaN exactly for NaN and ±Inf.
-    const __m256 bad = _mm256_or_ps(
-        _mm256_cmp_ps(_mm256_sub_ps(r, r), _mm256_sub_ps(r, r), _CMP_UNORD_Q),
-        _mm256_or_ps(_mm256_cmp_ps(_mm256_sub_ps(g, g), _mm256_sub_ps(g, g), _CMP_UNORD_Q),
-                     _mm256_cmp_ps(_mm256_sub_ps(b, b), _mm256_sub_ps(b, b), _CMP_UNORD_Q)));
-    if (_mm256_movemask_ps(bad)) break;  // the general body finds and reports the pixel
+    // r + g + b is finite exactly when all three are (an Inf stays Inf or meets −Inf in a
+    // NaN, a NaN stays NaN; relit values are far below float's overflow), and x − x is NaN
+    // exactly for NaN and ±Inf: one test for the three channels.
+    const __m256 sum = _mm256_add_ps(_mm256_add_ps(r, g), b);
+    const __m256 zero_or_nan = _mm256_sub_ps(sum, sum);
+    if (_mm256_movemask_ps(_mm256_cmp_ps(zero_or_nan, zero_or_nan, _CMP_UNORD_Q)))
+      break;  // the general body finds and reports the pixel
     const __m256i px = _mm256_or_si256(
         srgbCodes(r, job.srgb_lut),
         _mm256_or_si256(_mm256_slli_epi32(srgbCodes(g, job.srgb_lut), 8),
