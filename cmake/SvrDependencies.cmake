@@ -32,10 +32,11 @@ else()
   message(STATUS "svr: OSMesa not found (install libosmesa6-dev), the gl backend is left out")
 endif()
 
+# SHA-256: the disk cache's keys and checksums (spectral/disk_cache), and in the tests the
+# volume payloads against the checksums in data/volumes/*.nhdr.
+find_package(OpenSSL REQUIRED COMPONENTS Crypto)
 if(SVR_BUILD_TESTS)
   find_package(GTest REQUIRED)
-  # SHA-256 of volume payloads, checked against the checksums in data/volumes/*.nhdr.
-  find_package(OpenSSL REQUIRED COMPONENTS Crypto)
 endif()
 if(SVR_BUILD_BENCH)
   find_package(benchmark REQUIRED)

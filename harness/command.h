@@ -41,6 +41,10 @@ void runOnParse(App& sub, CommandContext& context, std::shared_ptr<Options> opti
   });
 }
 
+// --no-cache on a command that loads scenes: train models and design palettes afresh, and
+// neither read nor write the disk cache (spectral/disk_cache.h).
+void addCacheFlag(CLI::App& sub);
+
 // An image size given on the command line: the scene file's image.width/height range, checked
 // before any loading or rendering ("render: --width 0 is outside 1..16384").
 void checkImageSize(const std::string& command, const std::string& flag, int value);

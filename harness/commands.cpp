@@ -1,6 +1,8 @@
+#include <CLI/CLI.hpp>
 #include <fmt/format.h>
 
 #include "harness/command.h"
+#include "spectral/disk_cache.h"
 #include "spectral/error.h"
 
 // The list of commands, in the order `svr --help` shows them. Each NAME is defined by
@@ -28,6 +30,15 @@ const std::vector<CommandEntry>& commandEntries() {
   static const std::vector<CommandEntry> entries{SVR_COMMANDS(SVR_ENTRY)};
 #undef SVR_ENTRY
   return entries;
+}
+
+void addCacheFlag(CLI::App& sub) {
+  sub.add_flag_callback(
+      "--no-cache", [] { DiskCache::disableProcessCache(); },
+      fmt::format("train colour models and design palettes afresh, without reading or writing "
+                  "the cache ({})",
+                  DiskCache::defaultDirectory().empty() ? "none: no HOME"
+                                                        : DiskCache::defaultDirectory().string()));
 }
 
 void checkImageSize(const std::string& command, const std::string& flag, int value) {

@@ -262,6 +262,7 @@ CommandEntry compare() {
             auto* height =
                 sub.add_option("--height", o->height, "image height (default: the scene's)");
             sub.add_flag("-q,--quiet", o->quiet, "no progress bar or table");
+            addCacheFlag(sub);
             sub.callback([o, width, height, &context] {
               o->data_dir = context.data_dir;
               if (width->count()) checkImageSize("compare", "--width", o->width);

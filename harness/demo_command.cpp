@@ -54,6 +54,7 @@ CommandEntry demo() {
             sub.add_option("--out", o->out_dir, "report folder")->capture_default_str();
             sub.add_flag("--quick", o->quick, "fewer models, smaller images (for CI)");
             sub.add_flag("-q,--quiet", o->quiet, "no progress bars");
+            addCacheFlag(sub);
             runOnParse(sub, context, o, &runDemo);
           }};
 }

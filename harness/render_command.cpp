@@ -223,6 +223,7 @@ CommandEntry render() {
                            "most bytes of voxels and images, e.g. 512M or 2G (default: the "
                            "memory available now)");
             sub.add_flag("-q,--quiet", o->quiet, "no progress bar or summary");
+            addCacheFlag(sub);
             sub.add_option("--help-options", *help_options,
                            "print every backend's options (or BACKEND's) and exit")
                 ->expected(0, 1)

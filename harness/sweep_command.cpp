@@ -206,6 +206,7 @@ CommandEntry sweep() {
             size_option->excludes(width)->excludes(height);
             sub.add_option("--out", o->out_dir, "output folder")->required();
             sub.add_flag("-q,--quiet", o->quiet, "no progress bar");
+            addCacheFlag(sub);
             sub.callback([o, size, size_option, width, height, &context] {
               o->data_dir = context.data_dir;
               if (size_option->count()) {

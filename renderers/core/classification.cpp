@@ -170,8 +170,9 @@ ClassifiedVolume classify(const Volume& volume, const TransferFunction& tf,
                                 cv.t_channels > 1, refl_coeffs, shapes));
     }
     cv.label.resize(cv.values.size());
-    for (std::size_t i = 0; i < cv.values.size(); ++i)
-      cv.label[i] = static_cast<std::uint16_t>(cv.values[i]);
+    const std::int64_t n = static_cast<std::int64_t>(cv.values.size());
+#pragma omp parallel for schedule(static)
+    for (std::int64_t i = 0; i < n; ++i) cv.label[i] = static_cast<std::uint16_t>(cv.values[i]);
   } else {
     cv.entries = options.bins;
     cv.value_lo = lo;
@@ -188,9 +189,13 @@ ClassifiedVolume classify(const Volume& volume, const TransferFunction& tf,
   // Gradients: of the data for scalar volumes; of the per-voxel extinction for label maps
   // (label numbers have no meaningful gradient).
   if (cv.labels) {
+    std::vector<float> extinction(cv.entries);  // per label, so the voxel loop is a lookup
+    for (int e = 0; e < cv.entries; ++e)
+      extinction[e] = -std::log1p(-std::min(cv.alpha[e], 0.999999f));
     cv.shading_field.resize(cv.values.size());
-    for (std::size_t i = 0; i < cv.values.size(); ++i)
-      cv.shading_field[i] = -std::log1p(-std::min(cv.alpha[cv.label[i]], 0.999999f));
+    const std::int64_t n = static_cast<std::int64_t>(cv.values.size());
+#pragma omp parallel for schedule(static)
+    for (std::int64_t i = 0; i < n; ++i) cv.shading_field[i] = extinction[cv.label[i]];
   }
 
   markOccupiedBlocks(volume, cv);

@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "spectral/componentwise_model.h"
+#include "spectral/disk_cache.h"
 #include "spectral/error.h"
 #include "spectral/factor_training.h"
 #include "spectral/model_error.h"
@@ -40,6 +41,59 @@ double worstMean(const ColourModel& model, const Observer& observer, const Evalu
   return worst;
 }
 
+// Bump when training, its objective, its defaults or the auto rule change: models cached by an
+// older version are then rebuilt rather than reused.
+constexpr int kSceneModelVersion = 1;
+
+nlohmann::json valuesOf(const Spectrum& s) {
+  return std::vector<double>(s.values().data(), s.values().data() + s.values().size());
+}
+nlohmann::json valuesOf(const std::vector<Spectrum>& spectra) {
+  nlohmann::json out = nlohmann::json::array();
+  for (const auto& s : spectra) out.push_back(valuesOf(s));
+  return out;
+}
+
+// Everything a trained scene model depends on: the name asked for (and auto's target), the
+// observer's weighted colour-matching functions, the grid and the training set's values.
+nlohmann::json modelKey(const std::string& name, double auto_target, const Observer& observer,
+                        const TrainingSet& training) {
+  const WavelengthGrid& g = observer.grid();
+  const auto& cmf = observer.weightedCmf();
+  nlohmann::json key = {
+      {"version", kSceneModelVersion},
+      {"asked", name},
+      {"grid", {g.start_nm, g.step_nm, g.count}},
+      {"cmf", std::vector<double>(cmf.data(), cmf.data() + cmf.size())},
+      {"lights", valuesOf(training.lights)},
+      {"reflectances", valuesOf(training.reflectances)},
+      {"absorbers", valuesOf(training.absorbers)},
+      {"depths", training.depths},
+  };
+  if (name == "auto") key["auto_target"] = auto_target;
+  return key;
+}
+
+SceneModel fromCache(const nlohmann::json& payload, const std::string& name,
+                     const std::string& source) {
+  SceneModel m{modelFromJson(payload.at("model"), source), payload.at("description"), name};
+  m.palette_de2000 = payload.at("palette_de2000");
+  if (payload.contains("target")) m.target = payload.at("target");
+  m.cached = true;
+  return m;
+}
+
+nlohmann::json toCache(const SceneModel& m) {
+  nlohmann::json payload = {{"model", m.model->toJson()},
+                            {"description", m.description},
+                            {"palette_de2000", m.palette_de2000}};
+  if (std::isfinite(m.target)) payload["target"] = m.target;
+  return payload;
+}
+
+SceneModel trainSceneModel(const std::string& name, const Scene& scene, const Observer& observer,
+                           const EvaluationSet& palette, const TrainingSet& training);
+
 }  // namespace
 
 nlohmann::json SceneModel::record() const {
@@ -49,6 +103,7 @@ nlohmann::json SceneModel::record() const {
                       {"description", description}};
   if (std::isfinite(palette_de2000)) j["palette_de2000"] = palette_de2000;
   if (std::isfinite(target)) j["target"] = target;
+  if (model->name().rfind("factor:", 0) == 0) j["cached"] = cached;
   return j;
 }
 
@@ -70,6 +125,26 @@ SceneModel makeSceneModel(const std::string& name, const Scene& scene, const Obs
   }
   const EvaluationSet palette = scenePalette(scene, observer);
   const TrainingSet training{palette.lights, palette.reflectances, palette.absorbers, {16, 64, 256}};
+  // Trained once per palette: a second run of the scene reads the model from the disk cache.
+  const DiskCache& cache = DiskCache::process();
+  const nlohmann::json key = modelKey(name, scene.auto_target, observer, training);
+  const DiskCache::Lookup hit = cache.load("model", key);
+  if (hit.payload) {
+    try {
+      return fromCache(*hit.payload, name, cache.entryPath("model", key).string());
+    } catch (const std::exception&) {
+      // A well-formed entry whose model does not load is rebuilt like a corrupt one.
+    }
+  }
+  SceneModel trained = trainSceneModel(name, scene, observer, palette, training);
+  cache.store("model", key, toCache(trained));
+  return trained;
+}
+
+namespace {
+
+SceneModel trainSceneModel(const std::string& name, const Scene& scene, const Observer& observer,
+                           const EvaluationSet& palette, const TrainingSet& training) {
   auto describe = [&](int k, double error) {
     return fmt::format("factor:{} trained on the scene palette ({} lights × {} materials; mean "
                        "ΔE2000 {:.3f} single/deep)",
@@ -99,5 +174,7 @@ SceneModel makeSceneModel(const std::string& name, const Scene& scene, const Obs
               fmt::format(" — no k ≤ 10 reached {}; the most accurate one", scene.auto_target),
           name, best_error, scene.auto_target};
 }
+
+}  // namespace
 
 }  // namespace svr

@@ -25,12 +25,16 @@ struct SceneModel {
   // the single-product and 256-step mean ΔE2000); auto also has its target. NaN otherwise.
   double palette_de2000 = NAN;
   double target = NAN;
+  // Trained models: read from the disk cache (spectral/disk_cache.h) rather than trained now.
+  bool cached = false;
 
-  // {"asked", "model", "k", "description", "palette_de2000"?, "target"?} for render.json and
-  // report.json.
+  // {"asked", "model", "k", "description", "palette_de2000"?, "target"?, "cached"?} for
+  // render.json and report.json.
   nlohmann::json record() const;
 };
 
+// Trained models are cached on disk, keyed by everything they depend on (DiskCache::process();
+// off with --no-cache).
 SceneModel makeSceneModel(const std::string& name, const Scene& scene, const Observer& observer);
 
 }  // namespace svr

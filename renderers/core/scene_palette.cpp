@@ -6,10 +6,83 @@
 #include "spectral/data_dir.h"
 #include "spectral/design_palette.h"
 #include "spectral/design_solver.h"
+#include "spectral/disk_cache.h"
 #include "spectral/error.h"
 #include "spectral/palette.h"
+#include "spectral/text_file.h"
 
 namespace svr {
+namespace {
+
+// Bump when the design solver, its defaults or the palette format's reading change: palettes
+// cached by an older version are then designed again.
+constexpr int kDesignedPaletteVersion = 1;
+
+nlohmann::json valuesOf(const std::vector<DesignSpectrum>& spectra) {
+  nlohmann::json out = nlohmann::json::array();
+  for (const auto& s : spectra)
+    out.push_back({s.name, s.free,
+                   std::vector<double>(s.spectrum.values().data(),
+                                       s.spectrum.values().data() + s.spectrum.values().size())});
+  return out;
+}
+
+// Everything a design depends on: the palette file as read (cells, options, names), the values
+// of every spectrum it names (library entries and CSV files it loaded), the observer, the grid.
+nlohmann::json designKey(const std::string& text, const DesignPalette& design,
+                         const Observer& observer) {
+  const auto& cmf = observer.weightedCmf();
+  const WavelengthGrid& g = observer.grid();
+  return {{"version", kDesignedPaletteVersion},
+          {"palette_file", text},
+          {"lights", valuesOf(design.lights)},
+          {"materials", valuesOf(design.materials)},
+          {"grid", {g.start_nm, g.step_nm, g.count}},
+          {"cmf", std::vector<double>(cmf.data(), cmf.data() + cmf.size())}};
+}
+
+nlohmann::json toJson(const std::vector<NamedSpectrum>& spectra) {
+  nlohmann::json out = nlohmann::json::array();
+  for (const auto& s : spectra)
+    out.push_back({{"name", s.name},
+                   {"values", std::vector<double>(s.spectrum.values().data(),
+                                                  s.spectrum.values().data() +
+                                                      s.spectrum.values().size())}});
+  return out;
+}
+
+std::vector<NamedSpectrum> spectraFrom(const nlohmann::json& j, const WavelengthGrid& grid) {
+  std::vector<NamedSpectrum> out;
+  for (const auto& s : j) {
+    const std::vector<double> v = s.at("values");
+    if (static_cast<int>(v.size()) != grid.count) throw Error("cached palette: wrong grid");
+    out.push_back({s.at("name"), Spectrum(grid, Eigen::Map<const Eigen::VectorXd>(v.data(), static_cast<Eigen::Index>(v.size())))});
+  }
+  return out;
+}
+
+// The designed palette: from the disk cache when this exact design was made before.
+Palette designedPalette(const std::string& path, const SpectrumLibrary& library) {
+  const Observer observer = Observer::cie1931(defaultDataDir(), library.grid());
+  const DesignPalette design = loadDesignPalette(path, library, observer);
+  const DiskCache& cache = DiskCache::process();
+  const nlohmann::json key = designKey(readTextFile(path, "design palette"), design, observer);
+  if (const auto hit = cache.load("palette", key); hit.payload) {
+    try {
+      return {spectraFrom(hit.payload->at("lights"), library.grid()),
+              spectraFrom(hit.payload->at("materials"), library.grid())};
+    } catch (const std::exception&) {
+      // A well-formed entry that does not read back is designed again, like a corrupt one.
+    }
+  }
+  DesignResult result = designPalette(design, observer);
+  Palette palette{std::move(result.lights), std::move(result.materials)};
+  cache.store("palette", key,
+              {{"lights", toJson(palette.lights)}, {"materials", toJson(palette.materials)}});
+  return palette;
+}
+
+}  // namespace
 
 SpectrumLibrary withScenePalette(const JsonReader& spec, const std::filesystem::path& base,
                                  const SpectrumLibrary& library) {
@@ -22,16 +95,8 @@ SpectrumLibrary withScenePalette(const JsonReader& spec, const std::filesystem::
               "(the palette.json svr design saved)");
   spec.rejectUnknownKeys();
 
-  Palette palette;
-  if (design) {
-    const std::string path = (base / design->string()).string();
-    const Observer observer = Observer::cie1931(defaultDataDir(), library.grid());
-    DesignResult result = designPalette(loadDesignPalette(path, library, observer), observer);
-    palette.lights = std::move(result.lights);
-    palette.materials = std::move(result.materials);
-  } else {
-    palette = loadPalette((base / designed->string()).string(), library);
-  }
+  const Palette palette = design ? designedPalette((base / design->string()).string(), library)
+                                 : loadPalette((base / designed->string()).string(), library);
 
   SpectrumLibrary out = library;
   const auto define = [&](const NamedSpectrum& s, SpectrumKind kind) {

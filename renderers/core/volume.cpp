@@ -153,7 +153,9 @@ glm::dvec3 Volume::worldPosition(double x, double y, double z) const {
 std::vector<float> Volume::toFloat() const {
   std::vector<float> out(voxelCount());
   const std::size_t step = bytesPerVoxel(type_);
-  for (std::size_t i = 0; i < out.size(); ++i)
+  const std::int64_t n = static_cast<std::int64_t>(out.size());
+#pragma omp parallel for schedule(static)
+  for (std::int64_t i = 0; i < n; ++i)
     out[i] = static_cast<float>(valueAt(type_, data_.data() + i * step));
   return out;
 }

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <filesystem>
 #include <map>
 
 #include "renderers/core/classification.h"
@@ -10,6 +11,9 @@
 #include "renderers/core/scene_model.h"
 #include "renderers/registry.h"
 #include "spectral/colour_model.h"
+#include "spectral/design_palette.h"
+#include "spectral/design_solver.h"
+#include "spectral/disk_cache.h"
 #include "spectral/componentwise_model.h"
 #include "spectral/error.h"
 #include "spectral/image_difference.h"
@@ -159,6 +163,44 @@ TEST(DesignedScenes, APaletteNeedsExactlyOneSource) {
     EXPECT_NE(std::string(e.what()).find("palette"), std::string::npos) << e.what();
     EXPECT_NE(std::string(e.what()).find("exactly one"), std::string::npos) << e.what();
   }
+}
+
+}  // namespace
+}  // namespace svr
+
+namespace svr {
+namespace {
+
+// A designed palette is stored in the disk cache and read back bit for bit: the cached spectra
+// equal a fresh design of the same palette file (the second load of engine_designed takes
+// milliseconds instead of seconds; cache failures are tested in disk_cache_test and cli.cache).
+TEST(DesignedScenes, TheCachedPaletteEqualsAFreshDesign) {
+  const DiskCache& cache = DiskCache::process();
+  ASSERT_TRUE(cache.enabled()) << "ctest sets XDG_CACHE_HOME";
+  const Scene first = loadShipped("engine_designed");
+  const Scene second = loadShipped("engine_designed");  // a hit, whatever the first was
+  bool stored = false;
+  for (const auto& entry : std::filesystem::directory_iterator(cache.directory()))
+    stored = stored || entry.path().filename().string().rfind("palette-", 0) == 0;
+  EXPECT_TRUE(stored) << cache.directory();
+  const Observer& observer = test::rendererObserver();
+  const DesignResult fresh = designPalette(
+      loadDesignPalette(test::rendererDataDir() + "/palettes/engine.json", test::rendererLibrary(),
+                        observer),
+      observer);
+  ASSERT_EQ(second.lights.size(), 3u);
+  for (const NamedSpectrum& light : fresh.lights) {
+    bool found = false;
+    for (const auto& l : second.lights)
+      if (l.name == "palette/" + light.name || l.name == light.name) {
+        found = true;
+        EXPECT_EQ(l.spectrum.values(), light.spectrum.values()) << light.name;
+      }
+    EXPECT_TRUE(found) << light.name;
+  }
+  for (std::size_t m = 0; m < first.transfer_function.materials.size(); ++m)
+    EXPECT_EQ(first.transfer_function.materials[m].reflectance.values(),
+              second.transfer_function.materials[m].reflectance.values());
 }
 
 }  // namespace
