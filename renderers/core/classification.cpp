@@ -85,7 +85,8 @@ void markOccupiedBlocks(const Volume& volume, ClassifiedVolume& cv) {
       static_cast<std::size_t>(cv.blocks[0]) * cv.blocks[1] * cv.blocks[2], 0);
   std::vector<int> nonzero_prefix(cv.entries + 1, 0);
   for (int e = 0; e < cv.entries; ++e) nonzero_prefix[e + 1] = nonzero_prefix[e] + (cv.alpha[e] > 0);
-#pragma omp parallel for collapse(2) schedule(dynamic)
+  const bool parallel = static_cast<std::int64_t>(cv.values.size()) >= kParallelVoxels;
+#pragma omp parallel for collapse(2) schedule(dynamic) if (parallel)
   for (int bz = 0; bz < cv.blocks[2]; ++bz)
     for (int by = 0; by < cv.blocks[1]; ++by)
       for (int bx = 0; bx < cv.blocks[0]; ++bx) {
@@ -171,7 +172,7 @@ ClassifiedVolume classify(const Volume& volume, const TransferFunction& tf,
     }
     cv.label.resize(cv.values.size());
     const std::int64_t n = static_cast<std::int64_t>(cv.values.size());
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (n >= kParallelVoxels)
     for (std::int64_t i = 0; i < n; ++i) cv.label[i] = static_cast<std::uint16_t>(cv.values[i]);
   } else {
     cv.entries = options.bins;
@@ -194,7 +195,7 @@ ClassifiedVolume classify(const Volume& volume, const TransferFunction& tf,
       extinction[e] = -std::log1p(-std::min(cv.alpha[e], 0.999999f));
     cv.shading_field.resize(cv.values.size());
     const std::int64_t n = static_cast<std::int64_t>(cv.values.size());
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (n >= kParallelVoxels)
     for (std::int64_t i = 0; i < n; ++i) cv.shading_field[i] = extinction[cv.label[i]];
   }
 

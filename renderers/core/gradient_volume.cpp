@@ -42,7 +42,8 @@ GradientVolume buildGradientVolume(const ClassifiedVolume& cv) {
   // Two passes: the largest component sets the scale, then every voxel is quantised to it
   // (recomputing a row is cheaper than keeping 12 bytes a voxel in between).
   float largest = 0.f;
-#pragma omp parallel reduction(max : largest)
+  const bool parallel = static_cast<std::int64_t>(rows) * d[0] >= kParallelVoxels;
+#pragma omp parallel reduction(max : largest) if (parallel)
   {
     std::vector<float> g(row_values);
 #pragma omp for schedule(static)
@@ -57,7 +58,7 @@ GradientVolume buildGradientVolume(const ClassifiedVolume& cv) {
   out.q.resize(row_values * rows + GradientVolume::kPadding);
   for (int i = 0; i < GradientVolume::kPadding; ++i) out.q[row_values * rows + i] = 0;
   const float inv_scale = 1.f / out.scale;
-#pragma omp parallel
+#pragma omp parallel if (parallel)
   {
     std::vector<float> g(row_values);
 #pragma omp for schedule(static)

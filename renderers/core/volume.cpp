@@ -154,7 +154,7 @@ std::vector<float> Volume::toFloat() const {
   std::vector<float> out(voxelCount());
   const std::size_t step = bytesPerVoxel(type_);
   const std::int64_t n = static_cast<std::int64_t>(out.size());
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (n >= kParallelVoxels)
   for (std::int64_t i = 0; i < n; ++i)
     out[i] = static_cast<float>(valueAt(type_, data_.data() + i * step));
   return out;

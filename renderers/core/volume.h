@@ -26,6 +26,12 @@ Endian nativeEndian();
 
 using Dims = std::array<int, 3>;
 
+// Loops over fewer voxels than this run on one thread: a parallel region costs a fork and a
+// join, and on a machine busy with other work (a build beside the renderer) a join can wait a
+// whole scheduler slice for a descheduled thread — more than the few milliseconds the loop
+// takes alone.
+inline constexpr std::int64_t kParallelVoxels = std::int64_t{1} << 22;
+
 class Volume {
  public:
   Volume() = default;
