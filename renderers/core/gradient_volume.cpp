@@ -6,7 +6,7 @@
 namespace svr {
 
 std::uint64_t GradientVolume::bytesFor(const Dims& dims) {
-  return 3ull * sizeof(std::int16_t) * static_cast<std::uint64_t>(dims[0]) * dims[1] * dims[2];
+  return 4ull * sizeof(float) * static_cast<std::uint64_t>(dims[0]) * dims[1] * dims[2];
 }
 
 namespace {
@@ -34,40 +34,28 @@ void rowGradients(const float* f, const Dims& d, int y, int z, const float half_
 GradientVolume buildGradientVolume(const ClassifiedVolume& cv) {
   const Dims& d = cv.dims;
   const float* f = cv.shadingField().data();
-  const std::size_t row_values = 3 * static_cast<std::size_t>(d[0]);
+  const std::size_t row_voxels = d[0];
   const float half_inv[3] = {static_cast<float>(0.5 / cv.spacing.x),
                              static_cast<float>(0.5 / cv.spacing.y),
                              static_cast<float>(0.5 / cv.spacing.z)};
   const int rows = d[1] * d[2];
-  // Two passes: the largest component sets the scale, then every voxel is quantised to it
-  // (recomputing a row is cheaper than keeping 12 bytes a voxel in between).
-  float largest = 0.f;
-  const bool parallel = static_cast<std::int64_t>(rows) * d[0] >= kParallelVoxels;
-#pragma omp parallel reduction(max : largest) if (parallel)
-  {
-    std::vector<float> g(row_values);
-#pragma omp for schedule(static)
-    for (int r = 0; r < rows; ++r) {
-      rowGradients(f, d, r % d[1], r / d[1], half_inv, g.data());
-      for (float v : g) largest = std::max(largest, std::abs(v));
-    }
-  }
   GradientVolume out;
   out.dims = d;
-  out.scale = largest > 0.f ? largest / 32767.f : 1.f;
-  out.q.resize(row_values * rows + GradientVolume::kPadding);
-  for (int i = 0; i < GradientVolume::kPadding; ++i) out.q[row_values * rows + i] = 0;
-  const float inv_scale = 1.f / out.scale;
+  out.vg.resize(4 * row_voxels * rows);
+  const bool parallel = static_cast<std::int64_t>(rows) * d[0] >= kParallelVoxels;
 #pragma omp parallel if (parallel)
   {
-    std::vector<float> g(row_values);
+    std::vector<float> g(3 * row_voxels);
 #pragma omp for schedule(static)
     for (int r = 0; r < rows; ++r) {
       rowGradients(f, d, r % d[1], r / d[1], half_inv, g.data());
-      std::int16_t* q = out.q.data() + row_values * r;
-      for (std::size_t i = 0; i < row_values; ++i) {  // round half away from zero; |v| ≤ 32767
-        const float v = g[i] * inv_scale;
-        q[i] = static_cast<std::int16_t>(v + (v >= 0.f ? 0.5f : -0.5f));
+      float* o = out.vg.data() + 4 * row_voxels * r;
+      const float* field = f + row_voxels * r;
+      for (std::size_t x = 0; x < row_voxels; ++x) {
+        o[4 * x] = field[x];
+        o[4 * x + 1] = g[3 * x];
+        o[4 * x + 2] = g[3 * x + 1];
+        o[4 * x + 3] = g[3 * x + 2];
       }
     }
   }

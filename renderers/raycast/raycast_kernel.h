@@ -136,59 +136,51 @@ struct BinScale {
         last_entry(cv.entries - 1) {}
 };
 
-// The gradient of the shading field at a sample, world units.
-template <bool kPrecomputed>
-SVR_RAYCAST_INLINE void gradientAt(const ClassifiedVolume& cv, const GradientVolume* gv,
-                                   const Grid& grid, const Cell& cell, const float p[3],
-                                   const float half_inv_spacing[3], float g[3]) {
-  if constexpr (kPrecomputed) {
-    const std::int16_t* q = gv->q.data() + 3 * cell.o;
+// The precomputed (field, gradient) at a sample: the trilinear blend of the corners' 16-byte
+// vectors, in two chains of four multiply-adds.
+SVR_RAYCAST_INLINE void valueGradientAt(const GradientVolume& gv, const Grid& grid,
+                                        const Cell& cell, float vg[4]) {
+  const float* base = gv.vg.data() + 4 * cell.o;
 #if SVR_RAYCAST_AVX2
-    // Corner n's (x, y) as one 32-bit lane, then its (z, next x); GradientVolume pads the end.
-    const __m256i off3 = _mm256_mullo_epi32(_mm256_load_si256(reinterpret_cast<const __m256i*>(grid.off)),
-                                            _mm256_set1_epi32(3));
-    const __m256i xy = _mm256_i32gather_epi32(reinterpret_cast<const int*>(q), off3, 2);
-    const __m256i z_ = _mm256_i32gather_epi32(reinterpret_cast<const int*>(q + 2), off3, 2);
-    const __m256 w = _mm256_load_ps(cell.w);
-    const __m256 gx = _mm256_cvtepi32_ps(_mm256_srai_epi32(_mm256_slli_epi32(xy, 16), 16));
-    const __m256 gy = _mm256_cvtepi32_ps(_mm256_srai_epi32(xy, 16));
-    const __m256 gz = _mm256_cvtepi32_ps(_mm256_srai_epi32(_mm256_slli_epi32(z_, 16), 16));
-    // The three dot products with the weights, reduced together: lanes 0, 1, 2 = x, y, z.
-    const __m256 xy_sum = _mm256_hadd_ps(_mm256_mul_ps(gx, w), _mm256_mul_ps(gy, w));
-    const __m256 z_sum = _mm256_hadd_ps(_mm256_mul_ps(gz, w), _mm256_setzero_ps());
-    const __m256 quad = _mm256_hadd_ps(xy_sum, z_sum);  // per 128-bit half: x, y, z, 0
-    const __m128 total = _mm_mul_ps(
-        _mm_add_ps(_mm256_castps256_ps128(quad), _mm256_extractf128_ps(quad, 1)),
-        _mm_set1_ps(gv->scale));
-    alignas(16) float lanes[4];
-    _mm_store_ps(lanes, total);
-    g[0] = lanes[0], g[1] = lanes[1], g[2] = lanes[2];
+  __m128 a = _mm_setzero_ps(), b = _mm_setzero_ps();
+  for (int n = 0; n < 8; n += 2) {
+    a = _mm_fmadd_ps(_mm_load_ps(base + 4 * static_cast<std::ptrdiff_t>(grid.off[n])),
+                     _mm_broadcast_ss(&cell.w[n]), a);
+    b = _mm_fmadd_ps(_mm_load_ps(base + 4 * static_cast<std::ptrdiff_t>(grid.off[n + 1])),
+                     _mm_broadcast_ss(&cell.w[n + 1]), b);
+  }
+  _mm_storeu_ps(vg, _mm_add_ps(a, b));
 #else
-    float s[3] = {0.f, 0.f, 0.f};
-    for (int n = 0; n < 8; ++n) {
-      const std::int16_t* v = q + 3 * static_cast<std::size_t>(grid.off[n]);
-      for (int a = 0; a < 3; ++a) s[a] += cell.w[n] * static_cast<float>(v[a]);
-    }
-    for (int a = 0; a < 3; ++a) g[a] = s[a] * gv->scale;
+  for (int j = 0; j < 4; ++j) vg[j] = 0.f;
+  for (int n = 0; n < 8; ++n) {
+    const float* v = base + 4 * static_cast<std::ptrdiff_t>(grid.off[n]);
+    for (int j = 0; j < 4; ++j) vg[j] += cell.w[n] * v[j];
+  }
 #endif
-  } else {
-    const float* f = cv.shadingField().data();
-    for (int a = 0; a < 3; ++a) {
-      float hi[3] = {p[0], p[1], p[2]}, lo[3] = {p[0], p[1], p[2]};
-      hi[a] += 1.f;
-      lo[a] -= 1.f;
-      g[a] = (grid.sample(f, hi) - grid.sample(f, lo)) * half_inv_spacing[a];
-    }
+}
+
+// The gradient on the fly (the precomputed one did not fit): central differences of the
+// interpolated shading field, world units.
+SVR_RAYCAST_INLINE void gradientOnTheFly(const ClassifiedVolume& cv, const Grid& grid,
+                                         const float p[3], const float half_inv_spacing[3],
+                                         float g[3]) {
+  const float* f = cv.shadingField().data();
+  for (int a = 0; a < 3; ++a) {
+    float hi[3] = {p[0], p[1], p[2]}, lo[3] = {p[0], p[1], p[2]};
+    hi[a] += 1.f;
+    lo[a] -= 1.f;
+    g[a] = (grid.sample(f, hi) - grid.sample(f, lo)) * half_inv_spacing[a];
   }
 }
 
 // A sample's blended row of the sample table: acc = Σ w · row(e) over the entries around it
-// (two bins of a scalar volume's value, or the eight corners' labels). kStride: the table's
-// padded row length when k is fixed (the loops then have a compile-time count), else 0.
+// (the two bins around a scalar volume's interpolated value v, or the eight corners' labels).
+// kStride: the table's padded row length when k is fixed (the loops then have a compile-time
+// count), else 0.
 template <int kStride>
 SVR_RAYCAST_INLINE void blendSample(const ClassifiedVolume& cv, const SampleTable& table,
                                     const Grid& grid, const Cell& cell, const BinScale& bins,
-                                    int width_, float* acc) {
+                                    float v, int width_, float* acc) {
   const int width = kStride > 0 ? kStride : width_;
   if (cv.labels) {
     for (int j = 0; j < width; ++j) acc[j] = 0.f;
@@ -197,7 +189,6 @@ SVR_RAYCAST_INLINE void blendSample(const ClassifiedVolume& cv, const SampleTabl
       for (int j = 0; j < width; ++j) acc[j] += cell.w[n] * row[j];
     }
   } else {
-    const float v = grid.interpolate(cv.values.data(), cell);
     const float bin = std::clamp((v - bins.lo) * bins.scale, 0.f, bins.last);
     const int e0 = std::min(static_cast<int>(bin), bins.last_lower);
     const int e1 = std::min(e0 + 1, bins.last_entry);
@@ -310,12 +301,22 @@ SVR_RAYCAST_TARGET void traceTile(const TileJob& job) {
           }
           Cell cell;
           grid.cell(p, cell);
+          float vg[4];  // the value and gradient, when precomputed
+          float v = 0.f;
+          if constexpr (kPrecomputedGradients) {
+            valueGradientAt(*job.gradients, grid, cell, vg);
+            v = vg[0];
+          } else if (!cv.labels) {
+            v = grid.interpolate(cv.values.data(), cell);
+          }
           float acc[kWidthCap];
-          blendSample<kStride>(cv, table, grid, cell, bins, width, acc);
+          blendSample<kStride>(cv, table, grid, cell, bins, v, width, acc);
           if (acc[0] > 0.f) {  // α
             float g[3];
-            gradientAt<kPrecomputedGradients>(cv, job.gradients, grid, cell, p, half_inv_spacing,
-                                              g);
+            if constexpr (kPrecomputedGradients)
+              g[0] = vg[1], g[1] = vg[2], g[2] = vg[3];
+            else
+              gradientOnTheFly(cv, grid, p, half_inv_spacing, g);
             const auto [shade, highlight] = phong(phong_setup, g);
             const float hs = highlight * acc[1];
             for (int c = 0; c < k; ++c)
