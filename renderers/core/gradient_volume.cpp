@@ -6,7 +6,7 @@
 namespace svr {
 
 std::uint64_t GradientVolume::bytesFor(const Dims& dims) {
-  return 4ull * sizeof(float) * static_cast<std::uint64_t>(dims[0]) * dims[1] * dims[2];
+  return 4ull * sizeof(std::int16_t) * static_cast<std::uint64_t>(dims[0]) * dims[1] * dims[2];
 }
 
 namespace {
@@ -41,21 +41,42 @@ GradientVolume buildGradientVolume(const ClassifiedVolume& cv) {
   const int rows = d[1] * d[2];
   GradientVolume out;
   out.dims = d;
-  out.vg.resize(4 * row_voxels * rows);
   const bool parallel = static_cast<std::int64_t>(rows) * d[0] >= kParallelVoxels;
+  float lo = INFINITY, hi = -INFINITY, largest = 0.f;
+#pragma omp parallel reduction(min : lo) reduction(max : hi, largest) if (parallel)
+  {
+    std::vector<float> g(3 * row_voxels);
+#pragma omp for schedule(static)
+    for (int r = 0; r < rows; ++r) {
+      rowGradients(f, d, r % d[1], r / d[1], half_inv, g.data());
+      for (float v : g) largest = std::max(largest, std::abs(v));
+      for (std::size_t x = 0; x < row_voxels; ++x) {
+        lo = std::min(lo, f[row_voxels * r + x]);
+        hi = std::max(hi, f[row_voxels * r + x]);
+      }
+    }
+  }
+  const float gscale = largest > 0.f ? largest / 32767.f : 1.f;
+  const float vscale = hi > lo ? (hi - lo) / 65534.f : 1.f;
+  out.scale[0] = vscale;
+  out.offset[0] = lo + 32767.f * vscale;
+  for (int a = 1; a < 4; ++a) out.scale[a] = gscale;
+  out.q.resize(4 * row_voxels * rows);
 #pragma omp parallel if (parallel)
   {
     std::vector<float> g(3 * row_voxels);
 #pragma omp for schedule(static)
     for (int r = 0; r < rows; ++r) {
       rowGradients(f, d, r % d[1], r / d[1], half_inv, g.data());
-      float* o = out.vg.data() + 4 * row_voxels * r;
+      std::int16_t* o = out.q.data() + 4 * row_voxels * r;
       const float* field = f + row_voxels * r;
+      auto quantise = [](float v) {  // to nearest, half away from zero
+        return static_cast<std::int16_t>(
+            std::clamp(v + (v >= 0.f ? 0.5f : -0.5f), -32767.f, 32767.f));
+      };
       for (std::size_t x = 0; x < row_voxels; ++x) {
-        o[4 * x] = field[x];
-        o[4 * x + 1] = g[3 * x];
-        o[4 * x + 2] = g[3 * x + 1];
-        o[4 * x + 3] = g[3 * x + 2];
+        o[4 * x] = quantise((field[x] - out.offset[0]) / vscale);
+        for (int a = 0; a < 3; ++a) o[4 * x + 1 + a] = quantise(g[3 * x + a] / gscale);
       }
     }
   }

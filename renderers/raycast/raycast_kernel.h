@@ -5,8 +5,9 @@
 // gradients do not fit the memory budget). Included by one translation unit per instruction
 // set (raycast_kernel_portable.cpp, raycast_kernel_avx2.cpp), each of which defines
 // SVR_RAYCAST_ISA, the namespace its instantiations live in, so that the two compilations of
-// the same templates never meet at link time. With AVX2 the eight corners of a trilinear cell
-// are one vector: one gather for the value, two for the gradient.
+// the same templates never meet at link time. With AVX2 the eight corner weights of a
+// trilinear cell are one vector, and a sample's value and gradient (core/gradient_volume.h)
+// the four lanes of one multiply-add chain over its corners.
 //
 // Positions and steps are single precision inside the loop: sample positions are at most a
 // few thousand voxels from the origin, where float keeps 1/4000 voxel; the ray set-up (box
@@ -136,26 +137,34 @@ struct BinScale {
         last_entry(cv.entries - 1) {}
 };
 
-// The precomputed (field, gradient) at a sample: the trilinear blend of the corners' 16-byte
-// vectors, in two chains of four multiply-adds.
+// The precomputed (field, gradient) at a sample: the trilinear blend of the corners' four
+// int16, in two chains of four multiply-adds, then decoded.
+#if SVR_RAYCAST_AVX2
+// One voxel's four int16 as floats.
+SVR_RAYCAST_INLINE __m128 corner16(const std::int16_t* v) {
+  return _mm_cvtepi32_ps(_mm_cvtepi16_epi32(_mm_loadl_epi64(reinterpret_cast<const __m128i*>(v))));
+}
+#endif
+
 SVR_RAYCAST_INLINE void valueGradientAt(const GradientVolume& gv, const Grid& grid,
                                         const Cell& cell, float vg[4]) {
-  const float* base = gv.vg.data() + 4 * cell.o;
+  const std::int16_t* base = gv.q.data() + 4 * cell.o;
 #if SVR_RAYCAST_AVX2
   __m128 a = _mm_setzero_ps(), b = _mm_setzero_ps();
   for (int n = 0; n < 8; n += 2) {
-    a = _mm_fmadd_ps(_mm_load_ps(base + 4 * static_cast<std::ptrdiff_t>(grid.off[n])),
+    a = _mm_fmadd_ps(corner16(base + 4 * static_cast<std::ptrdiff_t>(grid.off[n])),
                      _mm_broadcast_ss(&cell.w[n]), a);
-    b = _mm_fmadd_ps(_mm_load_ps(base + 4 * static_cast<std::ptrdiff_t>(grid.off[n + 1])),
+    b = _mm_fmadd_ps(corner16(base + 4 * static_cast<std::ptrdiff_t>(grid.off[n + 1])),
                      _mm_broadcast_ss(&cell.w[n + 1]), b);
   }
-  _mm_storeu_ps(vg, _mm_add_ps(a, b));
+  _mm_storeu_ps(vg, _mm_fmadd_ps(_mm_add_ps(a, b), _mm_loadu_ps(gv.scale), _mm_loadu_ps(gv.offset)));
 #else
-  for (int j = 0; j < 4; ++j) vg[j] = 0.f;
+  float s[4] = {0.f, 0.f, 0.f, 0.f};
   for (int n = 0; n < 8; ++n) {
-    const float* v = base + 4 * static_cast<std::ptrdiff_t>(grid.off[n]);
-    for (int j = 0; j < 4; ++j) vg[j] += cell.w[n] * v[j];
+    const std::int16_t* v = base + 4 * static_cast<std::ptrdiff_t>(grid.off[n]);
+    for (int j = 0; j < 4; ++j) s[j] += cell.w[n] * static_cast<float>(v[j]);
   }
+  for (int j = 0; j < 4; ++j) vg[j] = s[j] * gv.scale[j] + gv.offset[j];
 #endif
 }
 

@@ -58,7 +58,7 @@ const BackendInfo& RaycastRenderer::info() const {
       "a ray per pixel, trilinear samples, Phong; the reference backend",
       {.perspective = true, .spectral_transmittance = true, .max_channels = raycast::kMaxChannels},
       {OptionSpec::choice("gradients", {"auto", "precomputed", "on-the-fly"},
-                          "normals from gradients precomputed at the voxels (6 bytes a voxel, "
+                          "normals from gradients precomputed at the voxels (8 bytes a voxel, "
                           "kept with the classification) or central differences per sample; "
                           "auto precomputes when they fit the memory budget")}};
   return info;

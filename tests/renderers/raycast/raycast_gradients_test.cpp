@@ -32,18 +32,22 @@ TEST(GradientVolume, IsExactOnALinearField) {
   cv.spacing = {1.0, 2.0, 0.5};
   cv.values = f;
   const GradientVolume g = buildGradientVolume(cv);
-  ASSERT_EQ(g.vg.size(), 4 * f.size());
-  ASSERT_EQ(reinterpret_cast<std::uintptr_t>(g.vg.data()) % 16, 0u);  // the kernels' aligned loads
+  ASSERT_EQ(g.q.size(), 4 * f.size());
+  const auto decoded = [&](std::size_t i, int lane) {
+    return g.q[4 * i + lane] * g.scale[lane] + g.offset[lane];
+  };
   const double expected[3] = {2.0, -1.5, 1.0};
+  const double range = 2.0 * 8 + 3.0 * 6 + 0.5 * 4;  // the field's span
   for (int z = 1; z < d[2] - 1; ++z)
     for (int y = 1; y < d[1] - 1; ++y)
       for (int x = 1; x < d[0] - 1; ++x) {
         const std::size_t i = (static_cast<std::size_t>(z) * d[1] + y) * d[0] + x;
-        EXPECT_EQ(g.vg[4 * i], f[i]);  // the field itself
+        // 16 bits over the field's range, and 15 over the largest gradient component (2: x).
+        EXPECT_NEAR(decoded(i, 0), f[i], 0.5 * range / 65534 + 1e-6);
         for (int a = 0; a < 3; ++a)
-          EXPECT_NEAR(g.vg[4 * i + 1 + a], expected[a], 1e-5) << x << y << z << a;
+          EXPECT_NEAR(decoded(i, 1 + a), expected[a], 0.5 * 2.0 / 32767 + 1e-6) << x << y << z << a;
       }
-  EXPECT_NEAR(g.vg[1], 1.0, 1e-6);  // x one-sided at voxel 0: (f[1] − f[0]) / 2
+  EXPECT_NEAR(decoded(0, 1), 1.0, 1e-4);  // x one-sided at voxel 0: (f[1] − f[0]) / 2
 }
 
 struct Pair {
