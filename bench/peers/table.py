@@ -20,13 +20,18 @@ import sys
 
 
 def bench_times(path):
-    """name -> ms per frame, without Google Benchmark's /min_time:…/real_time suffixes."""
+    """name -> ms per frame, without Google Benchmark's /min_time:…/real_time suffixes: the
+    median of the repetitions where the bench repeats (Repetitions + ReportAggregatesOnly), else
+    the single run."""
     out = {}
     for b in json.load(open(path))["benchmarks"]:
-        if b.get("run_type", "iteration") != "iteration":
+        aggregate = b.get("run_type", "iteration") == "aggregate"
+        if aggregate and b.get("aggregate_name") != "median":
             continue
-        name = "/".join(p for p in b["name"].split("/")
-                        if p != "real_time" and not p.startswith(("min_time:", "iterations:")))
+        name = b["run_name"] if aggregate else b["name"]
+        name = "/".join(p for p in name.split("/")
+                        if p != "real_time" and not p.startswith(("min_time:", "iterations:",
+                                                                   "repeats:")))
         scale = {"ns": 1e-6, "us": 1e-3, "ms": 1.0, "s": 1e3}[b["time_unit"]]
         out[name] = b["real_time"] * scale
     return out

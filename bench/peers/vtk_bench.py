@@ -11,11 +11,12 @@ Phong ambient/diffuse/shininess and a directional light. Not matched: VTK has on
 coefficient for the whole volume (we weight the highlight per material: it is set to the
 scene's specular × the largest specular weight), its colour and opacity are looked up after
 interpolating the value as ours are, but with 15-bit fixed-point compositing and gradients
-precomputed per voxel (quantised normals) where we take central differences per sample; its
-early termination threshold is built in (remaining opacity below about 0.02).
+precomputed per voxel (quantised normals) where we interpolate precomputed gradients; its
+early termination threshold is built in: a ray stops once its 15-bit accumulated opacity
+passes 32512/32767, a remaining transmittance of about 0.0078 (ours: the scene's 0.01).
 
-Time per frame is the mapper's own GetTimeToDraw() (the ray casting, not the window's blit of
-the image); the wall time of the whole Render() is recorded too. VTK needs an X display here
+Time per frame is the mapper's own GetTimeToDraw(), which covers the ray casting and the blit
+of its image into the window; the wall time of the whole Render() is recorded too. VTK needs an X display here
 (Debian's VTK 9.1 has no OSMesa or EGL window): bench/peers/run starts this under xvfb-run.
 
   python3 bench/peers/vtk_bench.py --scene out/peers/engine --threads 1 --json vtk.json
