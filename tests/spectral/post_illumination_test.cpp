@@ -92,31 +92,40 @@ TEST(PostIllumination, EveryWidthAndInstructionSetGivesTheSamePixels) {
     const auto model = makeSpectralModel(test::observer(), k);
     for (int t_channels : {0, 1, k}) {
       for (auto storage : {SampleStorage::kFloat, SampleStorage::kHalf}) {
-        // 37 columns: whole vectors and a tail in every row.
-        const auto img = randomImage(37, 5, k, t_channels, 7 + k).withStorage(storage);
-        PostIlluminator post(*model);
-        post.setLight(model->project(test::observer().unitLuminance(test::library().get("F2"))));
-        post.setBackground(Eigen::VectorXd::LinSpaced(k, 0.2, 0.9));
-        post.forceKernel({.dynamic_width = true, .isa = KernelIsa::kPortable});
-        std::vector<float> reference(3 * img.pixels());
-        std::vector<std::uint8_t> reference8(reference.size());
-        post.relightLinear(img, reference);
-        post.relightSrgb8(img, reference8);
-        for (KernelIsa isa : availableKernelIsas())
-          for (bool dynamic : {false, true}) {
-            SCOPED_TRACE(fmt::format("k={} T={} {} {} {}", k, t_channels, toString(isa),
-                                     dynamic ? "dynamic" : "fixed",
-                                     storage == SampleStorage::kHalf ? "half" : "float"));
-            post.forceKernel({.dynamic_width = dynamic, .isa = isa});
-            std::vector<float> out(reference.size());
-            std::vector<std::uint8_t> out8(reference.size());
-            post.relightLinear(img, out);
-            post.relightSrgb8(img, out8);
-            for (size_t i = 0; i < out.size(); ++i) {
-              ASSERT_NEAR(out[i], reference[i], 1e-6 * (1 + std::abs(reference[i]))) << i;
-              ASSERT_EQ(out8[i], reference8[i]) << i;  // the same table, the same rounding
+        // 37 and 45 columns: the fused kernel's steps of sixteen, then (45) one of eight, and a
+        // tail in every row.
+        for (int width : {37, 45}) {
+          const auto img = randomImage(width, 5, k, t_channels, 7 + k).withStorage(storage);
+          PostIlluminator post(*model);
+          post.setLight(model->project(test::observer().unitLuminance(test::library().get("F2"))));
+          post.setBackground(Eigen::VectorXd::LinSpaced(k, 0.2, 0.9));
+          post.forceKernel({.dynamic_width = true, .isa = KernelIsa::kPortable});
+          std::vector<float> reference(3 * img.pixels());
+          std::vector<std::uint8_t> reference8(reference.size());
+          post.relightLinear(img, reference);
+          post.relightSrgb8(img, reference8);
+          for (KernelIsa isa : availableKernelIsas())
+            for (bool dynamic : {false, true}) {
+              SCOPED_TRACE(fmt::format("k={} T={} {} {} {}", k, t_channels, toString(isa),
+                                       dynamic ? "dynamic" : "fixed",
+                                       storage == SampleStorage::kHalf ? "half" : "float"));
+              post.forceKernel({.dynamic_width = dynamic, .isa = isa});
+              std::vector<float> out(reference.size());
+              std::vector<std::uint8_t> out8(reference.size());
+              post.relightLinear(img, out);
+              post.relightSrgb8(img, out8);
+              // The same sums to float rounding (the AVX2 kernels fuse multiply-adds), so the
+              // same table gives the same code except where a value lies within that rounding
+              // of an entry boundary: then one code apart, and rarely.
+              int differing = 0;
+              for (size_t i = 0; i < out.size(); ++i) {
+                ASSERT_NEAR(out[i], reference[i], 1e-6 * (1 + std::abs(reference[i]))) << i;
+                ASSERT_LE(std::abs(int(out8[i]) - int(reference8[i])), 1) << i;
+                differing += out8[i] != reference8[i];
+              }
+              EXPECT_LE(differing, std::max<int>(2, out8.size() / 200));
             }
-          }
+        }
       }
     }
   }
