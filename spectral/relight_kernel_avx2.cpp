@@ -85,10 +85,12 @@ inline Relit8<P> relit8(const RelightJob& job, const __m256* mr, const __m256* m
 
 // r + g + b is finite exactly when all three are (an Inf stays Inf or meets −Inf in a NaN, a
 // NaN stays NaN; relit values are far below float's overflow), and x − x is NaN exactly for
-// NaN and ±Inf: one test for the three channels.
+// NaN and ±Inf: one test for the three channels (and, summed again, for sixteen pixels).
 template <int P>
-inline bool finite8(const Relit8<P>& c) {
-  const __m256 sum = _mm256_add_ps(_mm256_add_ps(c.r, c.g), c.b);
+inline __m256 sum8(const Relit8<P>& c) {
+  return _mm256_add_ps(_mm256_add_ps(c.r, c.g), c.b);
+}
+inline bool finite(__m256 sum) {
   const __m256 zero_or_nan = _mm256_sub_ps(sum, sum);
   return _mm256_movemask_ps(_mm256_cmp_ps(zero_or_nan, zero_or_nan, _CMP_UNORD_Q)) == 0;
 }
@@ -128,7 +130,8 @@ long relightFusedSrgb(const RelightJob& job) {
   for (; i + 16 <= job.end; i += 16) {
     const Relit8<P> first = relit8<P>(job, mr, mg, mb, i);
     const Relit8<P> second = relit8<P>(job, mr, mg, mb, i + 8);
-    if (!finite8(first) || !finite8(second)) break;  // the general body reports the pixel
+    // One test for both: a non-finite value in either makes the sum of sums non-finite.
+    if (!finite(_mm256_add_ps(sum8(first), sum8(second)))) break;  // the body reports it
     const __m256i x = encode8(first, job.srgb_lut), y = encode8(second, job.srgb_lut);
     // Four 12-byte groups a, b, c, d into 48 contiguous bytes (exactly: rows are relit by
     // different threads, so never write past).
@@ -141,7 +144,7 @@ long relightFusedSrgb(const RelightJob& job) {
   }
   if (i + 8 <= job.end) {
     const Relit8<P> last = relit8<P>(job, mr, mg, mb, i);
-    if (finite8(last)) {
+    if (finite(sum8(last))) {
       const __m256i x = encode8(last, job.srgb_lut);
       const __m128i lo = _mm256_castsi256_si128(x), hi = _mm256_extracti128_si256(x, 1);
       std::uint8_t* o = job.out_srgb + 3 * i;
