@@ -25,8 +25,8 @@ inline void loadHalfChunk(const std::uint16_t* src, float* dst, int n) {
 }
 
 // sRGB code values of 8 linear values: the same table as the portable path, read with one
-// gather. The table holds bytes; each lane reads 4 bytes at its entry (the table is padded):
-// srgbWords leaves the other three bytes, srgbCodes clears them.
+// gather. The table holds bytes; each lane reads 4 bytes at its entry (the table is padded)
+// and the code is the low one (encode8 picks it out).
 inline __m256i srgbWords(__m256 v, const std::uint8_t* lut) {
   v = _mm256_min_ps(_mm256_max_ps(v, _mm256_setzero_ps()), _mm256_set1_ps(1.0f));
   // v · scale + 0.5 rounded twice, as the portable path computes it: a fused multiply-add
@@ -35,45 +35,53 @@ inline __m256i srgbWords(__m256 v, const std::uint8_t* lut) {
       _mm256_mul_ps(v, _mm256_set1_ps(kSrgbLutSize - 1)), _mm256_set1_ps(0.5f)));
   return _mm256_i32gather_epi32(reinterpret_cast<const int*>(lut), idx, 1);
 }
-inline __m256i srgbCodes(__m256 v, const std::uint8_t* lut) {
-  return _mm256_and_si256(srgbWords(v, lut), _mm256_set1_epi32(0xff));
+// Eight pixels' linear RGB.
+struct Rgb8 {
+  __m256 r, g, b;
+};
+
+// The eight pixels' sRGB bytes, twelve per 128-bit lane (RGB RGB RGB RGB, then four zeros):
+// each gathered table word keeps its code in byte 0, which one byte shuffle per channel moves
+// to its place — no masking or shifting of the words.
+inline __m256i encode8(const Rgb8& c, const std::uint8_t* lut) {
+  constexpr char Z = -1;  // a shuffle index with the top bit set writes a zero byte
+  const __m256i to_r = _mm256_setr_epi8(0, Z, Z, 4, Z, Z, 8, Z, Z, 12, Z, Z, Z, Z, Z, Z,
+                                        0, Z, Z, 4, Z, Z, 8, Z, Z, 12, Z, Z, Z, Z, Z, Z);
+  const __m256i to_g = _mm256_setr_epi8(Z, 0, Z, Z, 4, Z, Z, 8, Z, Z, 12, Z, Z, Z, Z, Z,
+                                        Z, 0, Z, Z, 4, Z, Z, 8, Z, Z, 12, Z, Z, Z, Z, Z);
+  const __m256i to_b = _mm256_setr_epi8(Z, Z, 0, Z, Z, 4, Z, Z, 8, Z, Z, 12, Z, Z, Z, Z,
+                                        Z, Z, 0, Z, Z, 4, Z, Z, 8, Z, Z, 12, Z, Z, Z, Z);
+  return _mm256_or_si256(_mm256_shuffle_epi8(srgbWords(c.r, lut), to_r),
+                         _mm256_or_si256(_mm256_shuffle_epi8(srgbWords(c.g, lut), to_g),
+                                         _mm256_shuffle_epi8(srgbWords(c.b, lut), to_b)));
+}
+
+// encode8's 24 bytes written exactly: rows are relit by different threads, so never past.
+inline void store24(std::uint8_t* o, __m256i x) {
+  const __m128i lo = _mm256_castsi256_si128(x), hi = _mm256_extracti128_si256(x, 1);
+  _mm_storel_epi64(reinterpret_cast<__m128i*>(o), lo);
+  const int lo_tail = _mm_extract_epi32(lo, 2);
+  std::memcpy(o + 8, &lo_tail, 4);
+  _mm_storel_epi64(reinterpret_cast<__m128i*>(o + 12), hi);
+  const int hi_tail = _mm_extract_epi32(hi, 2);
+  std::memcpy(o + 20, &hi_tail, 4);
 }
 
 inline void encodeSrgbChunk(const float* r, const float* g, const float* b, int n,
                             std::uint8_t* out, const std::uint8_t* lut) {
-  // Bytes 0-2, 4-6, 8-10, 12-14 of each 128-bit lane: four packed RGB pixels.
-  const __m256i pack = _mm256_setr_epi8(0, 1, 2, 4, 5, 6, 8, 9, 10, 12, 13, 14, -1, -1, -1, -1,
-                                        0, 1, 2, 4, 5, 6, 8, 9, 10, 12, 13, 14, -1, -1, -1, -1);
   int i = 0;
-  for (; i + 8 <= n; i += 8) {
-    const __m256i px = _mm256_or_si256(
-        srgbCodes(_mm256_loadu_ps(r + i), lut),
-        _mm256_or_si256(_mm256_slli_epi32(srgbCodes(_mm256_loadu_ps(g + i), lut), 8),
-                        _mm256_slli_epi32(srgbCodes(_mm256_loadu_ps(b + i), lut), 16)));
-    const __m256i packed = _mm256_shuffle_epi8(px, pack);
-    const __m128i lo = _mm256_castsi256_si128(packed), hi = _mm256_extracti128_si256(packed, 1);
-    std::uint8_t* o = out + 3 * i;
-    // Exactly 12 bytes per lane: rows are relit by different threads, so never write past.
-    _mm_storel_epi64(reinterpret_cast<__m128i*>(o), lo);
-    const int lo_tail = _mm_extract_epi32(lo, 2);
-    std::memcpy(o + 8, &lo_tail, 4);
-    _mm_storel_epi64(reinterpret_cast<__m128i*>(o + 12), hi);
-    const int hi_tail = _mm_extract_epi32(hi, 2);
-    std::memcpy(o + 20, &hi_tail, 4);
-  }
+  for (; i + 8 <= n; i += 8)
+    store24(out + 3 * i,
+            encode8({_mm256_loadu_ps(r + i), _mm256_loadu_ps(g + i), _mm256_loadu_ps(b + i)}, lut));
   encodeSrgbWithTable(r + i, g + i, b + i, n - i, out + 3 * i, lut);
 }
 #include "spectral/relight_kernel_body.inc"
 
 // The relit linear RGB of eight pixels, from P float planes.
 template <int P>
-struct Relit8 {
-  __m256 r, g, b;
-};
-template <int P>
-inline Relit8<P> relit8(const RelightJob& job, const __m256* mr, const __m256* mg,
+inline Rgb8 relit8(const RelightJob& job, const __m256* mr, const __m256* mg,
                         const __m256* mb, std::size_t i) {
-  Relit8<P> o{_mm256_setzero_ps(), _mm256_setzero_ps(), _mm256_setzero_ps()};
+  Rgb8 o{_mm256_setzero_ps(), _mm256_setzero_ps(), _mm256_setzero_ps()};
   for (int p = 0; p < P; ++p) {
     const __m256 v = _mm256_loadu_ps(static_cast<const float*>(job.planes[p]) + i);
     o.r = _mm256_fmadd_ps(mr[p], v, o.r);
@@ -86,30 +94,12 @@ inline Relit8<P> relit8(const RelightJob& job, const __m256* mr, const __m256* m
 // r + g + b is finite exactly when all three are (an Inf stays Inf or meets −Inf in a NaN, a
 // NaN stays NaN; relit values are far below float's overflow), and x − x is NaN exactly for
 // NaN and ±Inf: one test for the three channels (and, summed again, for sixteen pixels).
-template <int P>
-inline __m256 sum8(const Relit8<P>& c) {
+inline __m256 sum8(const Rgb8& c) {
   return _mm256_add_ps(_mm256_add_ps(c.r, c.g), c.b);
 }
 inline bool finite(__m256 sum) {
   const __m256 zero_or_nan = _mm256_sub_ps(sum, sum);
   return _mm256_movemask_ps(_mm256_cmp_ps(zero_or_nan, zero_or_nan, _CMP_UNORD_Q)) == 0;
-}
-
-// The eight pixels' sRGB bytes, twelve per 128-bit lane (RGB RGB RGB RGB, then four zeros):
-// each gathered table word keeps its code in byte 0, which one byte shuffle per channel moves
-// to its place — no masking or shifting of the words.
-template <int P>
-inline __m256i encode8(const Relit8<P>& c, const std::uint8_t* lut) {
-  constexpr char Z = -1;  // a shuffle index with the top bit set writes a zero byte
-  const __m256i to_r = _mm256_setr_epi8(0, Z, Z, 4, Z, Z, 8, Z, Z, 12, Z, Z, Z, Z, Z, Z,
-                                        0, Z, Z, 4, Z, Z, 8, Z, Z, 12, Z, Z, Z, Z, Z, Z);
-  const __m256i to_g = _mm256_setr_epi8(Z, 0, Z, Z, 4, Z, Z, 8, Z, Z, 12, Z, Z, Z, Z, Z,
-                                        Z, 0, Z, Z, 4, Z, Z, 8, Z, Z, 12, Z, Z, Z, Z, Z);
-  const __m256i to_b = _mm256_setr_epi8(Z, Z, 0, Z, Z, 4, Z, Z, 8, Z, Z, 12, Z, Z, Z, Z,
-                                        Z, Z, 0, Z, Z, 4, Z, Z, 8, Z, Z, 12, Z, Z, Z, Z);
-  return _mm256_or_si256(_mm256_shuffle_epi8(srgbWords(c.r, lut), to_r),
-                         _mm256_or_si256(_mm256_shuffle_epi8(srgbWords(c.g, lut), to_g),
-                                         _mm256_shuffle_epi8(srgbWords(c.b, lut), to_b)));
 }
 
 // The common case fused: float planes to sRGB8, kept in registers from the loads through the
@@ -128,8 +118,8 @@ long relightFusedSrgb(const RelightJob& job) {
   }
   std::size_t i = job.begin;
   for (; i + 16 <= job.end; i += 16) {
-    const Relit8<P> first = relit8<P>(job, mr, mg, mb, i);
-    const Relit8<P> second = relit8<P>(job, mr, mg, mb, i + 8);
+    const Rgb8 first = relit8<P>(job, mr, mg, mb, i);
+    const Rgb8 second = relit8<P>(job, mr, mg, mb, i + 8);
     // One test for both: a non-finite value in either makes the sum of sums non-finite.
     if (!finite(_mm256_add_ps(sum8(first), sum8(second)))) break;  // the body reports it
     const __m256i x = encode8(first, job.srgb_lut), y = encode8(second, job.srgb_lut);
@@ -143,17 +133,9 @@ long relightFusedSrgb(const RelightJob& job) {
     _mm_storeu_si128(o + 2, _mm_or_si128(_mm_srli_si128(c, 8), _mm_slli_si128(d, 4)));
   }
   if (i + 8 <= job.end) {
-    const Relit8<P> last = relit8<P>(job, mr, mg, mb, i);
+    const Rgb8 last = relit8<P>(job, mr, mg, mb, i);
     if (finite(sum8(last))) {
-      const __m256i x = encode8(last, job.srgb_lut);
-      const __m128i lo = _mm256_castsi256_si128(x), hi = _mm256_extracti128_si256(x, 1);
-      std::uint8_t* o = job.out_srgb + 3 * i;
-      _mm_storel_epi64(reinterpret_cast<__m128i*>(o), lo);
-      const int lo_tail = _mm_extract_epi32(lo, 2);
-      std::memcpy(o + 8, &lo_tail, 4);
-      _mm_storel_epi64(reinterpret_cast<__m128i*>(o + 12), hi);
-      const int hi_tail = _mm_extract_epi32(hi, 2);
-      std::memcpy(o + 20, &hi_tail, 4);
+      store24(job.out_srgb + 3 * i, encode8(last, job.srgb_lut));
       i += 8;
     }
   }
