@@ -4,6 +4,7 @@ time beside ours on the same view, size and thread count, and ours/peer (< 1: we
 
   python3 bench/peers/table.py out/peers              (prints; writes out/peers/peers.json)
   python3 bench/peers/table.py out/peers --markdown   (the same as markdown, for docs/performance.md)
+  python3 bench/peers/table.py out/peers --chart docs/performance/peers_ratios.png   (and a bar chart)
 
 Inputs (any may be missing; its rows are then left out):
   volpack_t1.json, volpack_t2.json   svr_volpack_bench (Google Benchmark JSON); VolPack is
@@ -42,10 +43,19 @@ def threads_of(path):
 
 
 def main():
-    if len(sys.argv) not in (2, 3) or (len(sys.argv) == 3 and sys.argv[2] != "--markdown"):
+    args = sys.argv[1:]
+    markdown = "--markdown" in args
+    args = [a for a in args if a != "--markdown"]
+    chart = None
+    if "--chart" in args:
+        at = args.index("--chart")
+        if at + 1 >= len(args):
+            sys.exit("table: --chart needs a PNG path")
+        chart = args[at + 1]
+        del args[at:at + 2]
+    if len(args) != 1:
         sys.exit(__doc__)
-    folder = sys.argv[1]
-    markdown = len(sys.argv) == 3
+    folder = args[0]
     rows = []
     # VolPack against our shear-warp: VolPack's own time always comes from the 1-thread run.
     vp1 = os.path.join(folder, "volpack_t1.json")
@@ -118,6 +128,31 @@ def main():
               f"load average {load})")
     with open(os.path.join(folder, "peers.json"), "w") as f:
         json.dump({"rows": rows, "summary": summary, "load_average": os.getloadavg()}, f, indent=1)
+    if chart:
+        plot(summary, chart)
+
+
+def plot(summary, path):
+    """The geometric-mean ratios as horizontal bars, parity (1) and issue 16's goal (0.5) marked."""
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    labels = [f"{r['ours']} {r['model']} vs {r['peer']}, {r['size']}², {r['peer_threads']}/{r['threads']} thr"
+              for r in summary]
+    ratios = [r["ratio"] for r in summary]
+    fig, ax = plt.subplots(figsize=(8, 0.32 * len(summary) + 1.2))
+    colours = ["tab:green" if x <= 1 else "tab:red" for x in ratios]
+    ax.barh(range(len(summary)), ratios, color=colours)
+    ax.set_yticks(range(len(summary)), labels, fontsize=7)
+    ax.invert_yaxis()
+    ax.axvline(1.0, color="black", lw=1)
+    ax.axvline(0.5, color="grey", lw=1, ls="--")
+    for i, x in enumerate(ratios):
+        ax.text(x, i, f" {x:.2f}", va="center", fontsize=7)
+    ax.set_xlabel("ours / peer, time per frame (geometric mean over the views; < 1: ours faster)")
+    ax.set_title("bench/peers/run: geometric mean over the views", fontsize=9)
+    fig.tight_layout()
+    fig.savefig(path, dpi=110)
 
 
 if __name__ == "__main__":
