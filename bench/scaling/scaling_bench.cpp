@@ -130,6 +130,7 @@ void frame(benchmark::State& state, const std::string& scene_name, const std::st
   const auto renderer = makeRenderer(backend);
   RenderRequest request = sceneRequest(s, *l.classified);
   request.width = request.height = size;
+  request.options["raycast"]["gradients"] = "precomputed";  // steady frames, as engineRequest
   renderer->render(request);  // builds what backends cache on the classification
   for (auto _ : state) {
     auto image = renderer->render(request);

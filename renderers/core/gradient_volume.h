@@ -30,7 +30,8 @@ struct GradientVolume {
   // Per voxel, x fastest: the shading field (the values of a scalar volume), then its
   // gradient in world units, each quantised: decoded lane j = q · scale[j] + offset[j] (the
   // blend of a sample's corners decodes the same way, as its weights sum to 1).
-  std::vector<std::int16_t> q;
+  std::unique_ptr<std::int16_t[]> q;  // count values (allocated without zeroing)
+  std::size_t count = 0;
   float scale[4] = {1, 1, 1, 1}, offset[4] = {0, 0, 0, 0};
 
   // Bytes a volume of these dimensions takes.

@@ -148,7 +148,7 @@ SVR_RAYCAST_INLINE __m128 corner16(const std::int16_t* v) {
 
 SVR_RAYCAST_INLINE void valueGradientAt(const GradientVolume& gv, const Grid& grid,
                                         const Cell& cell, float vg[4]) {
-  const std::int16_t* base = gv.q.data() + 4 * cell.o;
+  const std::int16_t* base = gv.q.get() + 4 * cell.o;
 #if SVR_RAYCAST_AVX2
   __m128 a = _mm_setzero_ps(), b = _mm_setzero_ps();
   for (int n = 0; n < 8; n += 2) {

@@ -32,7 +32,7 @@ TEST(GradientVolume, IsExactOnALinearField) {
   cv.spacing = {1.0, 2.0, 0.5};
   cv.values = f;
   const GradientVolume g = buildGradientVolume(cv);
-  ASSERT_EQ(g.q.size(), 4 * f.size());
+  ASSERT_EQ(g.count, 4 * f.size());
   const auto decoded = [&](std::size_t i, int lane) {
     return g.q[4 * i + lane] * g.scale[lane] + g.offset[lane];
   };
@@ -98,9 +98,9 @@ TEST(RaycastGradients, OverTheBudgetFallBackWithANote) {
   const auto model = makeRgbModel(test::rendererObserver());
   const ClassifiedVolume cv = classifyScene(scene, *model);
   RenderRequest request = sceneRequest(scene, cv);
+  request.width = request.height = 128;  // large enough that auto would precompute (64³ voxels)
   const std::uint64_t held = cv.values.size() * sizeof(float) +
-                             LightIndependentImage::bytesFor(scene.width, scene.height, cv.k,
-                                                             cv.t_channels);
+                             LightIndependentImage::bytesFor(128, 128, cv.k, cv.t_channels);
   request.memory_budget = held + GradientVolume::bytesFor(cv.dims) / 2;
   std::vector<std::string> notes;
   request.note = [&](const std::string& n) { notes.push_back(n); };
