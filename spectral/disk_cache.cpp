@@ -9,6 +9,7 @@
 #include <system_error>
 
 #include "spectral/atomic_file.h"
+#include "spectral/colorimetry.h"
 
 namespace svr {
 namespace fs = std::filesystem;
@@ -21,6 +22,17 @@ std::string sha256Hex(const std::string& text) {
   std::string hex;
   for (unsigned int i = 0; i < length; ++i) hex += fmt::format("{:02x}", digest[i]);
   return hex;
+}
+
+nlohmann::json valuesJson(const Eigen::VectorXd& values) {
+  return std::vector<double>(values.data(), values.data() + values.size());
+}
+
+nlohmann::json observerKey(const Observer& observer) {
+  const WavelengthGrid& g = observer.grid();
+  const auto& cmf = observer.weightedCmf();
+  return {{"grid", {g.start_nm, g.step_nm, g.count}},
+          {"cmf", std::vector<double>(cmf.data(), cmf.data() + cmf.size())}};
 }
 
 namespace {

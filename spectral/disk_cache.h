@@ -12,6 +12,7 @@
 // and the caller rebuilds it and overwrites the entry. Entries are written atomically. A cache
 // that cannot be written (read-only home, no HOME) costs the speed-up, never the run.
 
+#include <Eigen/Core>
 #include <filesystem>
 #include <nlohmann/json.hpp>
 #include <optional>
@@ -19,8 +20,15 @@
 
 namespace svr {
 
+class Observer;
+
 // Hex SHA-256 of text.
 std::string sha256Hex(const std::string& text);
+
+// Pieces of keys and payloads the producers share: a vector's values as a JSON array (doubles
+// round-trip exactly), and an observer as its grid and weighted colour-matching functions.
+nlohmann::json valuesJson(const Eigen::VectorXd& values);
+nlohmann::json observerKey(const Observer& observer);
 
 class DiskCache {
  public:

@@ -1,9 +1,9 @@
 #pragma once
-// Empty-space skipping over a min–max octree: the classification's occupancy of 8³-voxel blocks
-// (ClassifiedVolume::block_occupied, level 0) and coarser levels of 16³, 32³, … voxels, each
-// occupied when any of its eight children is. A ray in empty space jumps to the exit of the
-// largest empty block around it, rather than from one 8³ block to the next: on the engine at
-// 512² a ray crossed some 13 empty blocks one by one.
+// Empty-space skipping over a min–max octree: the classification's occupancy of
+// ClassifiedVolume::kBlock³-voxel blocks (4³; block_occupied, level 0) and coarser levels of
+// 8³, 16³, … voxels, each occupied when any of its eight children is. A ray in empty space
+// jumps to the exit of the largest empty block around it, rather than from one block to the
+// next: on the engine at 512² a ray crossed some 13 empty 8³ blocks one by one.
 
 #include <cstdint>
 #include <memory>

@@ -45,12 +45,9 @@ double worstMean(const ColourModel& model, const Observer& observer, const Evalu
 // older version are then rebuilt rather than reused.
 constexpr int kSceneModelVersion = 1;
 
-nlohmann::json valuesOf(const Spectrum& s) {
-  return std::vector<double>(s.values().data(), s.values().data() + s.values().size());
-}
 nlohmann::json valuesOf(const std::vector<Spectrum>& spectra) {
   nlohmann::json out = nlohmann::json::array();
-  for (const auto& s : spectra) out.push_back(valuesOf(s));
+  for (const auto& s : spectra) out.push_back(valuesJson(s.values()));
   return out;
 }
 
@@ -58,13 +55,10 @@ nlohmann::json valuesOf(const std::vector<Spectrum>& spectra) {
 // observer's weighted colour-matching functions, the grid and the training set's values.
 nlohmann::json modelKey(const std::string& name, double auto_target, const Observer& observer,
                         const TrainingSet& training) {
-  const WavelengthGrid& g = observer.grid();
-  const auto& cmf = observer.weightedCmf();
   nlohmann::json key = {
       {"version", kSceneModelVersion},
       {"asked", name},
-      {"grid", {g.start_nm, g.step_nm, g.count}},
-      {"cmf", std::vector<double>(cmf.data(), cmf.data() + cmf.size())},
+      {"observer", observerKey(observer)},
       {"lights", valuesOf(training.lights)},
       {"reflectances", valuesOf(training.reflectances)},
       {"absorbers", valuesOf(training.absorbers)},
@@ -92,7 +86,36 @@ nlohmann::json toCache(const SceneModel& m) {
 }
 
 SceneModel trainSceneModel(const std::string& name, const Scene& scene, const Observer& observer,
-                           const EvaluationSet& palette, const TrainingSet& training);
+                           const EvaluationSet& palette, const TrainingSet& training) {
+  auto describe = [&](int k, double error) {
+    return fmt::format("factor:{} trained on the scene palette ({} lights × {} materials; mean "
+                       "ΔE2000 {:.3f} single/deep)",
+                       k, training.lights.size(), training.reflectances.size(), error);
+  };
+  if (name != "auto") {
+    const int k = parseModelName(name).k;
+    auto model = trainFactorModel(observer, training, k, FactorVariant::kRefined);
+    const double error = worstMean(*model, observer, palette);
+    return {std::move(model), describe(k, error), name, error};
+  }
+  std::unique_ptr<ColourModel> best;
+  double best_error = INFINITY;
+  for (int k = 3; k <= 10; ++k) {
+    auto model = trainFactorModel(observer, training, k, FactorVariant::kRefined);
+    const double error = worstMean(*model, observer, palette);
+    if (error < best_error) best_error = error, best = std::move(model);
+    if (best_error <= scene.auto_target)
+      return {std::move(best),
+              "auto: " + describe(k, best_error) +
+                  fmt::format(" — the smallest k within {}", scene.auto_target),
+              name, best_error, scene.auto_target};
+  }
+  const int k = best->channels();
+  return {std::move(best),
+          "auto: " + describe(k, best_error) +
+              fmt::format(" — no k ≤ 10 reached {}; the most accurate one", scene.auto_target),
+          name, best_error, scene.auto_target};
+}
 
 }  // namespace
 
@@ -140,41 +163,5 @@ SceneModel makeSceneModel(const std::string& name, const Scene& scene, const Obs
   cache.store("model", key, toCache(trained));
   return trained;
 }
-
-namespace {
-
-SceneModel trainSceneModel(const std::string& name, const Scene& scene, const Observer& observer,
-                           const EvaluationSet& palette, const TrainingSet& training) {
-  auto describe = [&](int k, double error) {
-    return fmt::format("factor:{} trained on the scene palette ({} lights × {} materials; mean "
-                       "ΔE2000 {:.3f} single/deep)",
-                       k, training.lights.size(), training.reflectances.size(), error);
-  };
-  if (name != "auto") {
-    const int k = parseModelName(name).k;
-    auto model = trainFactorModel(observer, training, k, FactorVariant::kRefined);
-    const double error = worstMean(*model, observer, palette);
-    return {std::move(model), describe(k, error), name, error};
-  }
-  std::unique_ptr<ColourModel> best;
-  double best_error = INFINITY;
-  for (int k = 3; k <= 10; ++k) {
-    auto model = trainFactorModel(observer, training, k, FactorVariant::kRefined);
-    const double error = worstMean(*model, observer, palette);
-    if (error < best_error) best_error = error, best = std::move(model);
-    if (best_error <= scene.auto_target)
-      return {std::move(best),
-              "auto: " + describe(k, best_error) +
-                  fmt::format(" — the smallest k within {}", scene.auto_target),
-              name, best_error, scene.auto_target};
-  }
-  const int k = best->channels();
-  return {std::move(best),
-          "auto: " + describe(k, best_error) +
-              fmt::format(" — no k ≤ 10 reached {}; the most accurate one", scene.auto_target),
-          name, best_error, scene.auto_target};
-}
-
-}  // namespace
 
 }  // namespace svr

@@ -21,9 +21,7 @@ constexpr int kDesignedPaletteVersion = 1;
 nlohmann::json valuesOf(const std::vector<DesignSpectrum>& spectra) {
   nlohmann::json out = nlohmann::json::array();
   for (const auto& s : spectra)
-    out.push_back({s.name, s.free,
-                   std::vector<double>(s.spectrum.values().data(),
-                                       s.spectrum.values().data() + s.spectrum.values().size())});
+    out.push_back({s.name, s.free, valuesJson(s.spectrum.values())});
   return out;
 }
 
@@ -31,23 +29,17 @@ nlohmann::json valuesOf(const std::vector<DesignSpectrum>& spectra) {
 // of every spectrum it names (library entries and CSV files it loaded), the observer, the grid.
 nlohmann::json designKey(const std::string& text, const DesignPalette& design,
                          const Observer& observer) {
-  const auto& cmf = observer.weightedCmf();
-  const WavelengthGrid& g = observer.grid();
   return {{"version", kDesignedPaletteVersion},
           {"palette_file", text},
           {"lights", valuesOf(design.lights)},
           {"materials", valuesOf(design.materials)},
-          {"grid", {g.start_nm, g.step_nm, g.count}},
-          {"cmf", std::vector<double>(cmf.data(), cmf.data() + cmf.size())}};
+          {"observer", observerKey(observer)}};
 }
 
 nlohmann::json toJson(const std::vector<NamedSpectrum>& spectra) {
   nlohmann::json out = nlohmann::json::array();
   for (const auto& s : spectra)
-    out.push_back({{"name", s.name},
-                   {"values", std::vector<double>(s.spectrum.values().data(),
-                                                  s.spectrum.values().data() +
-                                                      s.spectrum.values().size())}});
+    out.push_back({{"name", s.name}, {"values", valuesJson(s.spectrum.values())}});
   return out;
 }
 
@@ -56,7 +48,8 @@ std::vector<NamedSpectrum> spectraFrom(const nlohmann::json& j, const Wavelength
   for (const auto& s : j) {
     const std::vector<double> v = s.at("values");
     if (static_cast<int>(v.size()) != grid.count) throw Error("cached palette: wrong grid");
-    out.push_back({s.at("name"), Spectrum(grid, Eigen::Map<const Eigen::VectorXd>(v.data(), static_cast<Eigen::Index>(v.size())))});
+    out.push_back({s.at("name"), Spectrum(grid, Eigen::Map<const Eigen::VectorXd>(
+                                                    v.data(), static_cast<Eigen::Index>(v.size())))});
   }
   return out;
 }

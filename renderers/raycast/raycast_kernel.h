@@ -24,12 +24,12 @@
 #include "renderers/core/renderer.h"
 #include "renderers/raycast/sample_table.h"
 
-#if !defined(SVR_RAYCAST_ISA)
-#error "define SVR_RAYCAST_ISA (the instruction set's namespace) before including raycast_kernel.h"
 // SVR_RAYCAST_TARGET: the function attribute that compiles this namespace for the instruction
 // set (target("avx2,fma")); the helpers below are always_inline, so they are compiled inside
 // the kernels with it, and nothing compiled for AVX2 is ever shared with the portable path.
 // SVR_RAYCAST_AVX2: 1 where the AVX2 intrinsics paths are used.
+#if !defined(SVR_RAYCAST_ISA)
+#error "define SVR_RAYCAST_ISA (the instruction set's namespace) before including raycast_kernel.h"
 #endif
 #if !defined(SVR_RAYCAST_TARGET)
 #define SVR_RAYCAST_TARGET
@@ -69,7 +69,7 @@ struct Grid {
       stride[a] = s[a];
       step[a] = d[a] > 1 ? s[a] : 0;
     }
-    for (int n = 0; n < 8; ++n)  // pickKernel checks these fit (3 × a slice < 2³¹)
+    for (int n = 0; n < 8; ++n)  // the renderer checks these fit (checkSliceSize)
       off[n] = static_cast<std::int32_t>(((n & 1) ? step[0] : 0) + ((n & 2) ? step[1] : 0) +
                                          ((n & 4) ? step[2] : 0));
   }
@@ -85,11 +85,14 @@ struct Grid {
     }
 #if SVR_RAYCAST_AVX2
     // Lane n: x weight f or 1 − f by bit 0 of n, y by bit 1, z by bit 2.
-    const __m256 wx = _mm256_fmadd_ps(_mm256_set1_ps(f[0]), _mm256_setr_ps(-1, 1, -1, 1, -1, 1, -1, 1),
+    const __m256 wx = _mm256_fmadd_ps(_mm256_set1_ps(f[0]),
+                                      _mm256_setr_ps(-1, 1, -1, 1, -1, 1, -1, 1),
                                       _mm256_setr_ps(1, 0, 1, 0, 1, 0, 1, 0));
-    const __m256 wy = _mm256_fmadd_ps(_mm256_set1_ps(f[1]), _mm256_setr_ps(-1, -1, 1, 1, -1, -1, 1, 1),
+    const __m256 wy = _mm256_fmadd_ps(_mm256_set1_ps(f[1]),
+                                      _mm256_setr_ps(-1, -1, 1, 1, -1, -1, 1, 1),
                                       _mm256_setr_ps(1, 1, 0, 0, 1, 1, 0, 0));
-    const __m256 wz = _mm256_fmadd_ps(_mm256_set1_ps(f[2]), _mm256_setr_ps(-1, -1, -1, -1, 1, 1, 1, 1),
+    const __m256 wz = _mm256_fmadd_ps(_mm256_set1_ps(f[2]),
+                                      _mm256_setr_ps(-1, -1, -1, -1, 1, 1, 1, 1),
                                       _mm256_setr_ps(1, 1, 1, 1, 0, 0, 0, 0));
     _mm256_store_ps(c.w, _mm256_mul_ps(_mm256_mul_ps(wx, wy), wz));
 #else
@@ -101,7 +104,8 @@ struct Grid {
   // The trilinear interpolation of a float field over a cell.
   SVR_RAYCAST_INLINE float interpolate(const float* field, const Cell& c) const {
 #if SVR_RAYCAST_AVX2
-    const __m256 v = _mm256_i32gather_ps(field + c.o, _mm256_load_si256(reinterpret_cast<const __m256i*>(off)), 4);
+    const __m256i offsets = _mm256_load_si256(reinterpret_cast<const __m256i*>(off));
+    const __m256 v = _mm256_i32gather_ps(field + c.o, offsets, 4);
     return horizontalSum(_mm256_mul_ps(v, _mm256_load_ps(c.w)));
 #else
     float v = 0.f;
@@ -137,8 +141,6 @@ struct BinScale {
         last_entry(cv.entries - 1) {}
 };
 
-// The precomputed (field, gradient) at a sample: the trilinear blend of the corners' four
-// int16, in two chains of four multiply-adds, then decoded.
 #if SVR_RAYCAST_AVX2
 // One voxel's four int16 as floats.
 SVR_RAYCAST_INLINE __m128 corner16(const std::int16_t* v) {
@@ -146,6 +148,8 @@ SVR_RAYCAST_INLINE __m128 corner16(const std::int16_t* v) {
 }
 #endif
 
+// The precomputed (field, gradient) at a sample: the trilinear blend of the corners' four
+// int16, in two chains of four multiply-adds, then decoded.
 SVR_RAYCAST_INLINE void valueGradientAt(const GradientVolume& gv, const Grid& grid,
                                         const Cell& cell, float vg[4]) {
   const std::int16_t* base = gv.q.get() + 4 * cell.o;

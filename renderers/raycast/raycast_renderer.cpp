@@ -4,21 +4,29 @@
 
 #include "renderers/raycast/raycast_kernels.h"
 #include "renderers/registry.h"
+#include "spectral/error.h"
 
 namespace svr {
 namespace {
 
 // The kernel for this CPU, chosen here once per render: AVX2 + FMA where the CPU has them
-// (spectral's availableKernelIsas, the relight kernel's test), the corner offsets of a cell
-// fit the gathers' 32-bit lanes and the portable path is not forced; the portable compilation
-// otherwise.
-raycast::TileFn pickKernel(const raycast::KernelKey& key, const Dims& dims,
-                           const KernelForce& force) {
-  const bool small_slices = 3.0 * dims[0] * dims[1] < 2147483647.0;
+// (spectral's availableKernelIsas, the relight kernel's test) and the portable path is not
+// forced; the portable compilation otherwise.
+raycast::TileFn pickKernel(const raycast::KernelKey& key, const KernelForce& force) {
   const bool avx2 = raycast::avx2::compiled() && availableKernelIsas().back() == KernelIsa::kAvx2;
-  if (small_slices && avx2 && force.isa.value_or(KernelIsa::kAvx2) == KernelIsa::kAvx2)
+  if (avx2 && force.isa.value_or(KernelIsa::kAvx2) == KernelIsa::kAvx2)
     return raycast::avx2::pick(key);
   return raycast::portable::pick(key);
+}
+
+// Both kernels hold a cell's corner offsets as 32-bit integers (the AVX2 gathers take them as
+// lanes): one slice and a row more must stay below 2³¹ voxels.
+void checkSliceSize(const Dims& dims) {
+  const double corner = static_cast<double>(dims[0]) * dims[1] + dims[0] + 1;
+  if (corner > 2147483647.0)
+    throw Error(fmt::format("raycast: a slice of {}×{} voxels is over the 2³¹ voxels its cell "
+                            "offsets can address",
+                            dims[0], dims[1]));
 }
 
 // Bytes the classification already holds for the renderers (values, shading field, labels).
@@ -79,6 +87,7 @@ LightIndependentImage RaycastRenderer::renderImpl(const RenderRequest& req,
                                                   const BackendOptions& options,
                                                   ProgressCounter& progress) const {
   const ClassifiedVolume& cv = req.volume;
+  checkSliceSize(cv.dims);
   const auto gradients = gradientsFor(req, options.choice("gradients"));
   const auto table = raycast::sampleTableOf(cv);
   const auto occupancy = occupancyOf(cv);
@@ -87,7 +96,7 @@ LightIndependentImage RaycastRenderer::renderImpl(const RenderRequest& req,
   const raycast::TileFn fn = pickKernel(
       {.k = cv.k, .t_channels = cv.t_channels, .precomputed_gradients = gradients != nullptr,
        .dynamic_width = force_.dynamic_width},
-      cv.dims, force_);
+      force_);
   constexpr int kTile = 16;
   const int tiles_x = (req.width + kTile - 1) / kTile, tiles_y = (req.height + kTile - 1) / kTile;
   const int tiles = tiles_x * tiles_y;
@@ -95,8 +104,8 @@ LightIndependentImage RaycastRenderer::renderImpl(const RenderRequest& req,
 #pragma omp parallel for schedule(dynamic)
   for (int t = 0; t < tiles; ++t) {
     const int tx = t % tiles_x, ty = t / tiles_x;
-    raycast::TileJob job{&cv, gradients.get(), table.get(), occupancy.get(), &rays, &req, &image, tx * kTile, ty * kTile,
-                         std::min((tx + 1) * kTile, req.width),
+    raycast::TileJob job{&cv, gradients.get(), table.get(), occupancy.get(), &rays, &req,
+                         &image, tx * kTile, ty * kTile, std::min((tx + 1) * kTile, req.width),
                          std::min((ty + 1) * kTile, req.height)};
     fn(job);
     progress.advance();

@@ -18,12 +18,12 @@ struct SampleTable {
   // whole vectors of a compile-time count (the AVX2 build blends a factor:6 row in two FMAs).
   static constexpr int strideFor(int width) { return (width + 7) / 8 * 8; }
 
-  int k = 0, kt = 0;
   int stride = 0;  // strideFor(2 + k + kt)
   std::vector<float> rows;
 
   explicit SampleTable(const ClassifiedVolume& cv)
-      : k(cv.k), kt(cv.t_channels), stride(strideFor(2 + cv.k + cv.t_channels)) {
+      : stride(strideFor(2 + cv.k + cv.t_channels)) {
+    const int k = cv.k, kt = cv.t_channels;
     rows.assign(static_cast<std::size_t>(cv.entries) * stride, 0.f);
     for (int e = 0; e < cv.entries; ++e) {
       float* row = &rows[static_cast<std::size_t>(e) * stride];
@@ -35,8 +35,7 @@ struct SampleTable {
         row[2 + k + c] = cv.transmission[static_cast<std::size_t>(e) * kt + c];
     }
   }
-  const float* row(int e) const { return &rows[static_cast<std::size_t>(e) * stride]; }
-  // The same with the stride known at compile time (0: use the run-time one).
+  // Entry e's row; kStride: the stride when known at compile time (0: use the run-time one).
   template <int kStride>
   const float* row(int e) const {
     return rows.data() + static_cast<std::size_t>(e) * (kStride > 0 ? kStride : stride);
