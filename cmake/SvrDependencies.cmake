@@ -31,6 +31,14 @@ if(OSMESA_FOUND)
 else()
   message(STATUS "svr: OSMesa not found (install libosmesa6-dev), the gl backend is left out")
 endif()
+# EGL (libglvnd's libEGL, with Mesa's vendor library libegl-mesa0 behind it): the gl backend's
+# second platform, headless on a GPU or Mesa's software device.
+pkg_check_modules(EGL IMPORTED_TARGET egl)
+if(EGL_FOUND)
+  message(STATUS "svr: EGL ${EGL_VERSION} found, the gl backend gets its EGL platform")
+else()
+  message(STATUS "svr: EGL not found (install libegl-dev), the gl backend has OSMesa only")
+endif()
 
 # SHA-256: the disk cache's keys and checksums (spectral/disk_cache), and in the tests the
 # volume payloads against the checksums in data/volumes/*.nhdr.

@@ -1,8 +1,14 @@
-// Our raycaster on the views bench/peers/vtk_bench.py gives VTK's
-// vtkFixedPointVolumeRayCastMapper, so the two time the same volume, transfer function, camera,
-// sample distance (the scene's step, 0.5 voxel) and image size:
-//   Raycast/<rgb|factor:6>/<size>/az<deg>     RaycastRenderer::render, classification cached
-// Threads: OMP_NUM_THREADS (bench/peers/run sets it equal to VTK's SetNumberOfThreads).
+// Our raycasters on the views bench/peers/vtk_bench.py gives VTK's mappers, so the two time the
+// same volume, transfer function, camera, sample distance (the scene's step, 0.5 voxel) and
+// image size:
+//   Raycast/<rgb|factor:6>/<size>/az<deg>     the raycast backend against
+//                                             vtkFixedPointVolumeRayCastMapper
+//   GlRaycast/<rgb|factor:6>/<size>/az<deg>   gl.mode=raycast (its platform's default: OSMesa
+//                                             on llvmpipe here) against vtkGPUVolumeRayCastMapper
+//                                             on the same llvmpipe; the time includes reading
+//                                             the image back
+// Classification cached. Threads: OMP_NUM_THREADS for the CPU raycaster (bench/peers/run sets it
+// equal to VTK's SetNumberOfThreads); llvmpipe's LP_NUM_THREADS for both GL rows.
 // Every view renders one untimed frame first (VTK's script does too), then three repetitions of
 // at least 0.5 s each; the table takes their median.
 //
@@ -13,6 +19,7 @@
 #include <benchmark/benchmark.h>
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <string>
@@ -27,10 +34,12 @@ namespace {
 // The scene's azimuth, an axis view and one near the 45° diagonal.
 constexpr double kAzimuths[] = {-60.0, 0.0, 44.0};
 
-void raycastFrame(benchmark::State& state, const std::string& model, int size, double azimuth) {
+void raycastFrame(benchmark::State& state, const std::string& backend, const std::string& model,
+                  int size, double azimuth) {
   const ClassifiedVolume& cv = engineClassified(model);
-  const auto renderer = makeRenderer("raycast");
-  const RenderRequest request = engineRequest(cv, azimuth, size);
+  const auto renderer = makeRenderer(backend);
+  RenderRequest request = engineRequest(cv, azimuth, size);
+  if (backend == "gl") request.options["gl"] = {{"mode", "raycast"}, {"gradients", "precomputed"}};
   // One untimed frame first: it builds what the renderer keeps with the classification (the
   // gradient volume), which VTK's warm-up frame builds too.
   benchmark::DoNotOptimize(renderer->render(request).planeFloat(0).data());
@@ -79,16 +88,22 @@ void exportScene(const std::string& prefix) {
 }
 
 void registerAll() {
-  for (int size : {512, 800})
-    for (double az : kAzimuths)
-      for (const char* model : {"rgb", "factor:6"})
-        benchmark::RegisterBenchmark(fmt::format("Raycast/{}/{}/az{}", model, size, az).c_str(),
-                                     raycastFrame, std::string(model), size, az)
-            ->UseRealTime()
-            ->Unit(benchmark::kMillisecond)
-            ->MinTime(0.5)
-            ->Repetitions(3)  // the table takes the median, as VTK's rows do
-            ->ReportAggregatesOnly(true);
+  const bool gl_built = std::ranges::any_of(
+      backendEntries(), [](const BackendEntry& e) { return e.info.name == "gl" && e.make; });
+  for (const auto& [row, backend] : {std::pair{"Raycast", "raycast"}, std::pair{"GlRaycast", "gl"}}) {
+    if (std::string(backend) == "gl" && !gl_built) continue;
+    for (int size : {512, 800})
+      for (double az : kAzimuths)
+        for (const char* model : {"rgb", "factor:6"})
+          benchmark::RegisterBenchmark(
+              fmt::format("{}/{}/{}/az{}", row, model, size, az).c_str(), raycastFrame,
+              std::string(backend), std::string(model), size, az)
+              ->UseRealTime()
+              ->Unit(benchmark::kMillisecond)
+              ->MinTime(0.5)
+              ->Repetitions(3)  // the table takes the median, as VTK's rows do
+              ->ReportAggregatesOnly(true);
+  }
 }
 
 }  // namespace

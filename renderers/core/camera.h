@@ -30,6 +30,12 @@ class RayGenerator {
   RayGenerator(const Camera& camera, int width, int height);
   Ray ray(double px, double py) const;  // px, py in pixels (centre of pixel x is x + 0.5)
   const glm::dvec3& forward() const { return forward_; }
+  // A pixel at image-plane offsets (u, v) in [−1, 1] looks along forward + u·right·halfWidth +
+  // v·up·halfHeight (perspective; orthographic rays start there instead, parallel to forward).
+  const glm::dvec3& right() const { return right_; }
+  const glm::dvec3& up() const { return up_; }
+  double halfWidth() const { return half_w_; }
+  double halfHeight() const { return half_h_; }
 
  private:
   Camera camera_;

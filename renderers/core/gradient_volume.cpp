@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include <fmt/format.h>
+
 namespace svr {
 
 std::uint64_t GradientVolume::bytesFor(const Dims& dims) {
@@ -102,6 +104,38 @@ GradientVolume buildGradientVolume(const ClassifiedVolume& cv) {
 std::shared_ptr<const GradientVolume> gradientsOf(const ClassifiedVolume& cv) {
   return cv.derived->get<GradientVolume>(
       "gradients", [&] { return std::make_shared<const GradientVolume>(buildGradientVolume(cv)); });
+}
+
+namespace {
+
+// Bytes the classification already holds for the renderers (values, shading field, labels).
+std::uint64_t classifiedBytes(const ClassifiedVolume& cv) {
+  return cv.values.size() * sizeof(float) + cv.shading_field.size() * sizeof(float) +
+         cv.label.size() * sizeof(std::uint16_t);
+}
+
+}  // namespace
+
+std::shared_ptr<const GradientVolume> gradientsWithinBudget(const RenderRequest& req,
+                                                            bool required,
+                                                            const std::string& who) {
+  const ClassifiedVolume& cv = req.volume;
+  const std::uint64_t need = GradientVolume::bytesFor(cv.dims);
+  const std::uint64_t held =
+      classifiedBytes(cv) +
+      LightIndependentImage::bytesFor(req.width, req.height, cv.k, cv.t_channels);
+  if (!required && held + need > req.memory_budget) {
+    if (req.note)
+      req.note(fmt::format("{}: gradients computed per sample (slower): precomputing them "
+                           "needs {} beside the {} held, over the memory budget of {}",
+                           who, formatBytes(need), formatBytes(held),
+                           formatBytes(req.memory_budget)));
+    return nullptr;
+  }
+  checkMemoryBudget(held + need, req.memory_budget,
+                    fmt::format("{}: precomputed gradients of {}×{}×{} voxels", who, cv.dims[0],
+                                cv.dims[1], cv.dims[2]));
+  return gradientsOf(cv);
 }
 
 }  // namespace svr

@@ -22,6 +22,7 @@
 #include <vector>
 
 #include "renderers/core/classification.h"
+#include "renderers/core/renderer.h"
 
 namespace svr {
 
@@ -44,5 +45,13 @@ GradientVolume buildGradientVolume(const ClassifiedVolume& cv);
 
 // The gradients of cv, built on first use and kept with the classification (its DerivedCache).
 std::shared_ptr<const GradientVolume> gradientsOf(const ClassifiedVolume& cv);
+
+// The gradients of req.volume when they fit the memory budget beside what the classification
+// and the image already hold. When they do not: with `required`, an svr::Error naming the
+// budget; otherwise null (the caller takes gradients on the fly), with a note through req.note.
+// `who` ("raycast") starts the note and the error.
+std::shared_ptr<const GradientVolume> gradientsWithinBudget(const RenderRequest& req,
+                                                            bool required,
+                                                            const std::string& who);
 
 }  // namespace svr

@@ -24,9 +24,9 @@ std::vector<OptionSpec> splatOptionSpecs() {
   };
 }
 
-SplatSettings splatSettings(const BackendOptions& options) {
+SplatSettings splatSettings(const BackendOptions& options, const std::string& mode_key) {
   SplatSettings s;
-  s.mode = options.choice("mode") == "direct" ? SplatSettings::Mode::kDirect
+  s.mode = options.choice(mode_key) == "direct" ? SplatSettings::Mode::kDirect
                                               : SplatSettings::Mode::kSheet;
   s.kernel = {options.number("sigma"), options.number("radius"), options.number("lowpass")};
   s.sheet_voxels = options.number("sheet");

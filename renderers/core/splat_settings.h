@@ -17,6 +17,8 @@ struct SplatSettings {
 
 // mode, sigma, radius, sheet, lowpass — with the defaults chosen by measurement (splat/README).
 std::vector<OptionSpec> splatOptionSpecs();
-SplatSettings splatSettings(const BackendOptions& options);
+// `mode_key`: the option holding sheet or direct ("splat_mode" in the gl backend, whose own
+// `mode` chooses between ray casting and splatting).
+SplatSettings splatSettings(const BackendOptions& options, const std::string& mode_key = "mode");
 
 }  // namespace svr::splat

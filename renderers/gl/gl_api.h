@@ -1,8 +1,9 @@
 #pragma once
 // The OpenGL 4.5 core entry points the gl backend calls, as one table of function pointers
-// loaded through OSMesaGetProcAddress (gl_context.cpp). Nothing here links a GL symbol
-// directly: libOSMesa does not export the DSA entry points, and linking libGL or libOpenGL
-// beside it makes calls go silently nowhere (DESIGN §5). One table per context, no globals.
+// loaded through the platform's GetProcAddress (OSMesa or EGL; gl_context.cpp). Nothing here
+// links a GL symbol directly: libOSMesa does not export the DSA entry points, and linking libGL
+// or libOpenGL beside it makes calls go silently nowhere (DESIGN §5). One table per context,
+// no globals.
 
 #include <GL/glcorearb.h>
 
@@ -45,6 +46,7 @@ namespace svr::gl {
   X(PFNGLPROGRAMUNIFORM2FPROC, ProgramUniform2f)                         \
   X(PFNGLPROGRAMUNIFORM3FPROC, ProgramUniform3f)                         \
   X(PFNGLPROGRAMUNIFORM3IPROC, ProgramUniform3i)                         \
+  X(PFNGLPROGRAMUNIFORM4FPROC, ProgramUniform4f)                         \
   X(PFNGLPROGRAMUNIFORM1FVPROC, ProgramUniform1fv)                       \
   X(PFNGLCREATEBUFFERSPROC, CreateBuffers)                               \
   X(PFNGLNAMEDBUFFERSTORAGEPROC, NamedBufferStorage)                     \
@@ -56,6 +58,8 @@ namespace svr::gl {
   X(PFNGLTEXTURESTORAGE2DPROC, TextureStorage2D)                         \
   X(PFNGLTEXTURESTORAGE3DPROC, TextureStorage3D)                         \
   X(PFNGLTEXTURESUBIMAGE3DPROC, TextureSubImage3D)                       \
+  X(PFNGLTEXTURESUBIMAGE2DPROC, TextureSubImage2D)                       \
+  X(PFNGLTEXTUREPARAMETERIPROC, TextureParameteri)                       \
   X(PFNGLGETTEXTURESUBIMAGEPROC, GetTextureSubImage)                     \
   X(PFNGLBINDTEXTUREUNITPROC, BindTextureUnit)                           \
   X(PFNGLTEXTUREBUFFERPROC, TextureBuffer)                               \

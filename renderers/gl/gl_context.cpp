@@ -1,27 +1,14 @@
 #include "renderers/gl/gl_context.h"
 
-// osmesa.h pulls in GL/gl.h; both it and glcorearb.h only declare, nothing here calls a GL
-// symbol directly (gl_api.h).
-#include <GL/osmesa.h>
 #include <fmt/format.h>
 
-#include <array>
 #include <cstdio>
-#include <mutex>
 #include <vector>
 
 #include "spectral/error.h"
 
 namespace svr::gl {
 namespace {
-
-// OSMesa keeps process-wide state (its state-tracker manager and screen) that it sets up on the
-// first context creation; creation and destruction are serialised so two renderers starting on
-// two threads never race on it. Rendering itself runs unserialised, one context per thread.
-std::mutex& lifecycleMutex() {
-  static std::mutex m;
-  return m;
-}
 
 const char* errorName(GLenum e) {
   switch (e) {
@@ -39,9 +26,7 @@ const char* errorName(GLenum e) {
 }  // namespace
 
 struct GlContext::Impl {
-  OSMesaContext context = nullptr;
-  // The default framebuffer OSMesaMakeCurrent requires; renders go to framebuffer objects.
-  std::array<unsigned char, 4> pixel{};
+  std::unique_ptr<GlPlatform> platform;
   GlApi api;
   GlLimits limits;
   std::string description;
@@ -50,37 +35,17 @@ struct GlContext::Impl {
   std::vector<std::string> debug_errors;
 };
 
-GlContext::GlContext() : impl_(std::make_unique<Impl>()) {
-  {
-    const std::lock_guard lock(lifecycleMutex());
-    const int attributes[] = {OSMESA_FORMAT,
-                              OSMESA_RGBA,
-                              OSMESA_DEPTH_BITS,
-                              0,
-                              OSMESA_STENCIL_BITS,
-                              0,
-                              OSMESA_ACCUM_BITS,
-                              0,
-                              OSMESA_PROFILE,
-                              OSMESA_CORE_PROFILE,
-                              OSMESA_CONTEXT_MAJOR_VERSION,
-                              4,
-                              OSMESA_CONTEXT_MINOR_VERSION,
-                              5,
-                              0};
-    impl_->context = OSMesaCreateContextAttribs(attributes, nullptr);
-  }
-  if (!impl_->context)
-    throw Error(
-        "gl: OSMesaCreateContextAttribs could not create an OpenGL 4.5 core context "
-        "(OSMesa needs Mesa's llvmpipe; see GALLIUM_DRIVER and LIBGL_DEBUG=verbose)");
+GlContext::GlContext(GlPlatformKind platform) : impl_(std::make_unique<Impl>()) {
+  impl_->platform = makePlatform(platform);
   const Current current(*this);
   GlApi& gl = impl_->api;
-  // OSMesaGetProcAddress answers even for names it does not know, so the version below, not
-  // a null pointer, is what proves the entry points are real.
+  // Both platforms' GetProcAddress answer even for names they do not know, so the version
+  // below, not a null pointer, is what proves the entry points are real.
 #define SVR_GL_LOAD(type, name)                                                            \
-  gl.name = reinterpret_cast<type>(OSMesaGetProcAddress("gl" #name));                      \
-  if (!gl.name) throw Error("gl: OSMesaGetProcAddress found no gl" #name);
+  gl.name = reinterpret_cast<type>(impl_->platform->proc("gl" #name));                     \
+  if (!gl.name)                                                                            \
+    throw Error(fmt::format("gl: {} found no gl" #name,                                    \
+                            platformName(impl_->platform->kind())));
   SVR_GL_FUNCTIONS(SVR_GL_LOAD)
 #undef SVR_GL_LOAD
   const auto* version = reinterpret_cast<const char*>(gl.GetString(GL_VERSION));
@@ -88,9 +53,10 @@ GlContext::GlContext() : impl_(std::make_unique<Impl>()) {
   int major = 0, minor = 0;
   if (!version || std::sscanf(version, "%d.%d", &major, &minor) != 2 ||
       major * 10 + minor < 45)
-    throw Error(fmt::format("gl: the OSMesa context reports OpenGL '{}'; the gl backend needs 4.5",
-                            version ? version : "(none)"));
-  impl_->description = fmt::format("{}, {}", version, renderer ? renderer : "?");
+    throw Error(fmt::format("gl: the {} context reports OpenGL '{}'; the gl backend needs 4.5",
+                            platformName(impl_->platform->kind()), version ? version : "(none)"));
+  impl_->description = fmt::format("{}, {}, {}", version, renderer ? renderer : "?",
+                                   impl_->platform->describe());
 
   GlLimits& l = impl_->limits;
   gl.GetIntegerv(GL_MAX_TEXTURE_SIZE, &l.max_texture_size);
@@ -128,14 +94,12 @@ GlContext::GlContext() : impl_(std::make_unique<Impl>()) {
   check("context set-up");
 }
 
-GlContext::~GlContext() {
-  const std::lock_guard lock(lifecycleMutex());
-  OSMesaDestroyContext(impl_->context);
-}
+GlContext::~GlContext() = default;
 
 const GlApi& GlContext::api() const { return impl_->api; }
 const GlLimits& GlContext::limits() const { return impl_->limits; }
 const std::string& GlContext::description() const { return impl_->description; }
+GlPlatformKind GlContext::platform() const { return impl_->platform->kind(); }
 
 void GlContext::check(const std::string& what) const {
   std::string errors;
@@ -147,12 +111,10 @@ void GlContext::check(const std::string& what) const {
   if (!errors.empty()) throw Error(fmt::format("gl: {}: {}", what, errors));
 }
 
-GlContext::Current::Current(const GlContext& context) {
-  Impl& impl = *context.impl_;
-  if (!OSMesaMakeCurrent(impl.context, impl.pixel.data(), GL_UNSIGNED_BYTE, 1, 1))
-    throw Error("gl: OSMesaMakeCurrent failed (is the context current on another thread?)");
+GlContext::Current::Current(const GlContext& context) : platform_(*context.impl_->platform) {
+  platform_.makeCurrent();
 }
 
-GlContext::Current::~Current() { OSMesaMakeCurrent(nullptr, nullptr, 0, 0, 0); }
+GlContext::Current::~Current() { platform_.release(); }
 
 }  // namespace svr::gl

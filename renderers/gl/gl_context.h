@@ -1,9 +1,9 @@
 #pragma once
-// An offscreen OpenGL 4.5 core context through OSMesa (Mesa's llvmpipe here; DESIGN §5), owned
-// RAII-style: the context, its 1×1 default framebuffer, and the GL function table loaded
-// through OSMesaGetProcAddress. OSMesa binds a context to the calling thread, so a context is
-// used by one thread at a time through a Current guard, and everything a render draws goes to
-// framebuffer objects (gl_framebuffer.h), never to the default framebuffer.
+// An offscreen OpenGL 4.5 core context, owned RAII-style: the platform's context (OSMesa or EGL,
+// gl_platform.h; DESIGN §5) and the GL function table loaded through it. Both platforms bind a
+// context to the calling thread, so a context is used by one thread at a time through a Current
+// guard, and everything a render draws goes to framebuffer objects (gl_framebuffer.h), never to
+// a default framebuffer.
 //
 // Errors: a context that cannot be created, or one below 4.5, is an svr::Error; check() turns a
 // pending glGetError (and, in debug builds, the KHR_debug messages of type error) into one,
@@ -13,6 +13,7 @@
 #include <string>
 
 #include "renderers/gl/gl_api.h"
+#include "renderers/gl/gl_platform.h"
 
 namespace svr::gl {
 
@@ -31,27 +32,33 @@ struct GlLimits {
 
 class GlContext {
  public:
-  // Creates the context and checks that it is OpenGL 4.5 core or newer. Throws svr::Error.
-  GlContext();
+  // Creates the context on `platform` and checks that it is OpenGL 4.5 core or newer. Throws
+  // svr::Error.
+  explicit GlContext(GlPlatformKind platform = defaultPlatform());
   ~GlContext();
   GlContext(const GlContext&) = delete;
   GlContext& operator=(const GlContext&) = delete;
 
   const GlApi& api() const;
   const GlLimits& limits() const;
-  const std::string& description() const;  // "4.5 (Core Profile) Mesa 22.3.6, llvmpipe (…)"
+  // "4.5 (Core Profile) Mesa 22.3.6, llvmpipe (…), OSMesa"
+  const std::string& description() const;
+  GlPlatformKind platform() const;
 
   // Throws svr::Error "gl: <what>: <error>" when GL recorded an error since the last check.
   void check(const std::string& what) const;
 
-  // Makes the context current on this thread while it lives. Throws svr::Error when OSMesa
-  // refuses (for example, when the context is current on another thread).
+  // Makes the context current on this thread while it lives. Throws svr::Error when the
+  // platform refuses (for example, when the context is current on another thread).
   class Current {
    public:
     explicit Current(const GlContext& context);
     ~Current();
     Current(const Current&) = delete;
     Current& operator=(const Current&) = delete;
+
+   private:
+    GlPlatform& platform_;
   };
 
  private:

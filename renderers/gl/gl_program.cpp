@@ -77,9 +77,22 @@ void GlProgram::set(const char* u, float x, float y, float z) const {
 void GlProgram::set(const char* u, int x, int y, int z) const {
   gl_.ProgramUniform3i(id_, gl_.GetUniformLocation(id_, u), x, y, z);
 }
+void GlProgram::set(const char* u, const float (&v)[4]) const {
+  gl_.ProgramUniform4f(id_, gl_.GetUniformLocation(id_, u), v[0], v[1], v[2], v[3]);
+}
 void GlProgram::set(const char* u, const std::vector<float>& v) const {
   gl_.ProgramUniform1fv(id_, gl_.GetUniformLocation(id_, u), static_cast<GLsizei>(v.size()),
                         v.data());
+}
+
+std::string fullscreenVertexShader() {
+  return R"(#version 450 core
+// One triangle covering the viewport; a scissor box limits it where a pass needs fewer pixels.
+void main() {
+  vec2 p = vec2((gl_VertexID & 1) * 4 - 1, (gl_VertexID & 2) * 2 - 1);
+  gl_Position = vec4(p, 0.0, 1.0);
+}
+)";
 }
 
 }  // namespace svr::gl

@@ -32,6 +32,7 @@ class GlProgram {
   void set(const char* uniform, float x, float y) const;
   void set(const char* uniform, float x, float y, float z) const;
   void set(const char* uniform, int x, int y, int z) const;
+  void set(const char* uniform, const float (&xyzw)[4]) const;
   void set(const char* uniform, const std::vector<float>& values) const;
 
  private:
@@ -39,5 +40,9 @@ class GlProgram {
   std::string name_;
   GLuint id_ = 0;
 };
+
+// The vertex shader of one triangle covering the viewport (no inputs), for passes that run a
+// fragment shader per pixel.
+std::string fullscreenVertexShader();
 
 }  // namespace svr::gl

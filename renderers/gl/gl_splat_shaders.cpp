@@ -287,17 +287,6 @@ void main() {
 )";
 }
 
-std::string fullscreenVertexShader() {
-  return R"(#version 450 core
-// One triangle covering the viewport; the scissor box limits it to the sheet's pixels. The sheet
-// buffer has the S image's size and margin, so a fragment reads its own texel.
-void main() {
-  vec2 p = vec2((gl_VertexID & 1) * 4 - 1, (gl_VertexID & 2) * 2 - 1);
-  gl_Position = vec4(p, 0.0, 1.0);
-}
-)";
-}
-
 std::string compositeFragmentShader(int k, int kt, PassOutput output, int targets) {
   return header(k, kt, output, targets) + R"(
 uniform sampler2DArray u_sheet_buffer;  // quantity q in layer q / 4, component q % 4

@@ -22,8 +22,8 @@ std::string prepareShader(int k, int kt);
 // than the largest point, a quad of 6 vertices) and fragment shader.
 std::string splatVertexShader(int k, int kt, PassOutput output, int targets, bool points);
 std::string splatFragmentShader(int k, int kt, PassOutput output, int targets);
-// Sheet compositing: a full-screen triangle reading the sheet buffer.
-std::string fullscreenVertexShader();
+// Sheet compositing: over fullscreenVertexShader's triangle (gl_program.h), reading the sheet
+// buffer, which has the S image's size and margin, so a fragment reads its own texel.
 std::string compositeFragmentShader(int k, int kt, PassOutput output, int targets);
 
 }  // namespace svr::gl

@@ -29,14 +29,7 @@ void checkSliceSize(const Dims& dims) {
                             dims[0], dims[1]));
 }
 
-// Bytes the classification already holds for the renderers (values, shading field, labels).
-std::uint64_t classifiedBytes(const ClassifiedVolume& cv) {
-  return cv.values.size() * sizeof(float) + cv.shading_field.size() * sizeof(float) +
-         cv.label.size() * sizeof(std::uint16_t);
-}
-
-// The precomputed gradients when they are asked for or fit beside what is already held, else
-// null (on-the-fly central differences, with a note saying why).
+// The precomputed gradients, or null for on-the-fly central differences.
 std::shared_ptr<const GradientVolume> gradientsFor(const RenderRequest& req,
                                                    const std::string& mode) {
   const ClassifiedVolume& cv = req.volume;
@@ -50,21 +43,7 @@ std::shared_ptr<const GradientVolume> gradientsFor(const RenderRequest& req,
   const double voxels = static_cast<double>(cv.dims[0]) * cv.dims[1] * cv.dims[2];
   if (mode == "auto" && static_cast<double>(req.width) * req.height * kVoxelsPerPixel < voxels)
     return nullptr;
-  const std::uint64_t need = GradientVolume::bytesFor(cv.dims);
-  const std::uint64_t held =
-      classifiedBytes(cv) +
-      LightIndependentImage::bytesFor(req.width, req.height, cv.k, cv.t_channels);
-  if (mode == "auto" && held + need > req.memory_budget) {
-    if (req.note)
-      req.note(fmt::format("raycast: gradients computed per sample (slower): precomputing them "
-                           "needs {} beside the {} held, over the memory budget of {}",
-                           formatBytes(need), formatBytes(held), formatBytes(req.memory_budget)));
-    return nullptr;
-  }
-  checkMemoryBudget(held + need, req.memory_budget,
-                    fmt::format("raycast: precomputed gradients of {}×{}×{} voxels", cv.dims[0],
-                                cv.dims[1], cv.dims[2]));
-  return gradientsOf(cv);
+  return gradientsWithinBudget(req, mode == "precomputed", "raycast");
 }
 
 }  // namespace

@@ -9,7 +9,7 @@
 #include "renderers/core/classification.h"
 #include "renderers/core/procedural_volume.h"
 #include "renderers/core/scene_model.h"
-#include "renderers/gl/gl_splat_renderer.h"
+#include "renderers/gl/gl_renderer.h"
 #include "renderers/raycast/raycast_renderer.h"
 #include "renderers/core/splat_settings.h"
 #include "renderers/splat/splat_renderer.h"
@@ -31,15 +31,17 @@ LightIndependentImage renderScene(const Scene& scene, const ColourModel& model,
   return test::render(renderer, scene, model, options);
 }
 
-// The same options for both splatting backends.
+// The same options for both splatting backends (gl's own `mode` picks splatting, its
+// `splat_mode` is the splat backend's `mode`).
 nlohmann::json modeOptions(const std::string& mode) {
-  return {{"splat", {{"mode", mode}}}, {"gl", {{"mode", mode}}}};
+  return {{"splat", {{"mode", mode}}}, {"gl", {{"mode", "splat"}, {"splat_mode", mode}}}};
 }
 
 // A kernel wide enough that a lattice of them sums to a constant to 1e-5 (the default σ = 0.45
 // ripples by 2.8%, splat_renderer.h), for the tests against closed-form transmittance.
 nlohmann::json smoothKernel(const std::string& mode) {
-  return {{"gl", {{"mode", mode}, {"sigma", 0.7}, {"radius", 2.5}}}};
+  return {{"gl", {{"mode", "splat"}, {"splat_mode", mode}, {"sigma", 0.7}, {"radius", 2.5}}},
+          {"splat", {{"mode", mode}, {"sigma", 0.7}, {"radius", 2.5}}}};
 }
 
 double slabVoxels(const Scene& scene) {
@@ -78,7 +80,7 @@ TEST(GlSplat, SlabTransmittanceIsExpMinusSigmaD) {
   const Scene scene = test::slabScene(0.05, "", 0.5);
   const double expected = std::exp(-0.05 * slabVoxels(scene));
   for (const std::string mode : {"sheet", "direct"}) {
-    const auto img = renderScene(scene, *model, GlSplatRenderer(), smoothKernel(mode));
+    const auto img = renderScene(scene, *model, GlRenderer(), smoothKernel(mode));
     ASSERT_EQ(img.transmittanceChannels(), 1);
     for (int y = 4; y < 28; y += 3)
       for (int x = 4; x < 28; x += 3)
@@ -92,16 +94,15 @@ TEST(GlSplat, SpectralSlabTransmittancePerChannel) {
   const auto model = makeSpectralModel(test::rendererObserver(), 81);
   const Scene scene = test::slabScene(0.05, "ColorChecker/cyan", 0.5);
   const double d = slabVoxels(scene);
-  const auto img = renderScene(scene, *model, GlSplatRenderer(), smoothKernel("sheet"));
+  const auto img = renderScene(scene, *model, GlRenderer(), smoothKernel("sheet"));
   ASSERT_EQ(img.transmittanceChannels(), 81);
   const Eigen::VectorXd a = test::rendererLibrary().get("ColorChecker/cyan").values();
   const Eigen::VectorXd shape = a / a.mean();
   for (int c = 0; c < 81; c += 10)
     EXPECT_NEAR(img.transmittance(c, 16, 16), std::exp(-0.05 * d * shape[c]), 2e-3) << c;
   // S of all 81 channels as the CPU splat computes it (relative 1e-4: float sums).
-  const nlohmann::json both = {{"gl", smoothKernel("sheet")["gl"]},
-                               {"splat", smoothKernel("sheet")["gl"]}};
-  const auto gl = renderScene(scene, *model, GlSplatRenderer(), both);
+  const nlohmann::json both = smoothKernel("sheet");
+  const auto gl = renderScene(scene, *model, GlRenderer(), both);
   const auto cpu = renderScene(scene, *model, SplatRenderer(), both);
   for (int c = 0; c < 81; ++c)
     EXPECT_NEAR(gl.scattered(c, 16, 16), cpu.scattered(c, 16, 16),
@@ -115,7 +116,7 @@ TEST(GlSplat, SphereChordsMatchTheAnalyticLength) {
   const auto model = makeSpectralModel(test::rendererObserver(), 4);
   const RayGenerator rays(scene.camera, scene.width, scene.height);
   for (const std::string mode : {"sheet", "direct"}) {
-    const auto img = renderScene(scene, *model, GlSplatRenderer(), modeOptions(mode));
+    const auto img = renderScene(scene, *model, GlRenderer(), modeOptions(mode));
     int checked = 0;
     for (int y = 0; y < 48; ++y)
       for (int x = 0; x < 48; ++x) {
@@ -141,7 +142,7 @@ TEST(GlSplat, MatchesCpuSplatOnAnalyticScenes) {
     for (const std::string mode : {"sheet", "direct"}) {
       SCOPED_TRACE(std::string(name) + " " + mode);
       const ClassifiedVolume cv = classifyScene(scene, *model);
-      const auto gl = renderClassified(scene, cv, GlSplatRenderer(), modeOptions(mode));
+      const auto gl = renderClassified(scene, cv, GlRenderer(), modeOptions(mode));
       const auto cpu = renderClassified(scene, cv, SplatRenderer(), modeOptions(mode));
       double max_diff = 0.0;
       for (int p = 0; p < gl.planes(); ++p)
@@ -170,7 +171,7 @@ TEST(GlSplat, MatchesCpuSplatOnShippedVolumes) {
                                  scene.camera.fov_degrees, scene.camera.ortho_height);
     const SceneModel model = makeSceneModel("rgb", scene, test::rendererObserver());
     const ClassifiedVolume cv = classifyScene(scene, *model.model);
-    const GlSplatRenderer gl_renderer;  // one instance: the voxel list is uploaded once
+    const GlRenderer gl_renderer;  // one instance: the voxel list is uploaded once
     const auto ray = renderClassified(scene, cv, RaycastRenderer(), {});
     for (const std::string mode : {"sheet", "direct"}) {
       const auto gl = renderClassified(scene, cv, gl_renderer, modeOptions(mode));
@@ -197,7 +198,7 @@ TEST(GlSplat, FootprintsWiderThanAPointAreQuads) {
   const auto model = makeRgbModel(test::rendererObserver());
   const ClassifiedVolume cv = classifyScene(scene, *model);
   for (const std::string mode : {"sheet", "direct"}) {
-    const auto gl = renderClassified(scene, cv, GlSplatRenderer(), modeOptions(mode));
+    const auto gl = renderClassified(scene, cv, GlRenderer(), modeOptions(mode));
     const auto cpu = renderClassified(scene, cv, SplatRenderer(), modeOptions(mode));
     double worst = 0.0;
     for (int p = 0; p < gl.planes(); ++p)
@@ -210,7 +211,8 @@ TEST(GlSplat, FootprintsWiderThanAPointAreQuads) {
 
 TEST(GlSplat, BadOptionsNameTheKeyAndValue) {
   const auto settingsOf = [](const nlohmann::json& options) {
-    return splat::splatSettings(readBackendOptions(splat::splatOptionSpecs(), options, "gl"));
+    return splat::splatSettings(readBackendOptions(GlRenderer().info().options, options, "gl"),
+                                "splat_mode");
   };
   const auto expectError = [&](const nlohmann::json& options, const std::string& part) {
     try {
@@ -220,12 +222,15 @@ TEST(GlSplat, BadOptionsNameTheKeyAndValue) {
       EXPECT_NE(std::string(e.what()).find(part), std::string::npos) << e.what();
     }
   };
-  expectError({{"gl", {{"mode", "blend"}}}}, "gl.mode: 'blend' is not one of sheet, direct");
+  expectError({{"gl", {{"mode", "blend"}}}}, "gl.mode: 'blend' is not one of raycast, splat");
+  expectError({{"gl", {{"splat_mode", "blend"}}}},
+              "gl.splat_mode: 'blend' is not one of sheet, direct");
+  expectError({{"gl", {{"platform", "glx"}}}}, "gl.platform: 'glx' is not one of auto, osmesa, egl");
   expectError({{"gl", {{"radius", -1}}}}, "gl.radius");
   expectError({{"gl", {{"sheet", 0.05}}}}, "gl.sheet");
   expectError({{"gl", {{"sigmma", 0.7}}}}, "sigmma");
   EXPECT_NO_THROW(settingsOf({{"splat", {{"anything", 1}}}}));
-  EXPECT_EQ(settingsOf({{"gl", {{"mode", "direct"}}}}).mode,
+  EXPECT_EQ(settingsOf({{"gl", {{"splat_mode", "direct"}}}}).mode,
             splat::SplatSettings::Mode::kDirect);
 }
 
@@ -236,7 +241,7 @@ TEST(GlSplat, ImageBeyondTheTextureLimitIsAnError) {
   scene.width = 20000;
   const auto model = makeRgbModel(test::rendererObserver());
   try {
-    renderScene(scene, *model, GlSplatRenderer(), {});
+    renderScene(scene, *model, GlRenderer(), {});
     FAIL() << "no error";
   } catch (const Error& e) {
     EXPECT_NE(std::string(e.what()).find("beyond GL_MAX_TEXTURE_SIZE"), std::string::npos)

@@ -1,4 +1,4 @@
-#include "renderers/gl/gl_splat_renderer.h"
+#include "renderers/gl/gl_splat_frame.h"
 
 #include <fmt/format.h>
 
@@ -16,10 +16,9 @@
 #include "renderers/gl/gl_framebuffer.h"
 #include "renderers/gl/gl_objects.h"
 #include "renderers/gl/gl_program.h"
-#include "renderers/gl/gl_relighter.h"
 #include "renderers/gl/gl_splat_shaders.h"
+#include "renderers/gl/gl_state.h"
 #include "renderers/gl/gl_voxel_list.h"
-#include "renderers/registry.h"
 #include "spectral/error.h"
 
 namespace svr {
@@ -39,79 +38,46 @@ double normalCdf(double t) { return 0.5 * std::erfc(-t / std::numbers::sqrt2); }
 
 }  // namespace
 
-struct GlSplatRenderer::State {
-  gl::GlContext context;  // first: destroyed last, after every object below
-  gl::GlObject vao;
-  std::map<std::string, std::unique_ptr<gl::GlProgram>> programs;
-  // The classification uploaded, by identity: its derived-data cache, which lives exactly as
-  // long as the classification (a weak pointer, so a new classification at the same address
-  // never passes for the old one).
-  std::weak_ptr<DerivedCache> uploaded_for;
-  std::shared_ptr<const gl::GlVoxelList> list;
-  gl::GlObject voxels, tables, nodes;
-
-  State() {
-    const gl::GlContext::Current current(context);
-    vao = gl::makeVertexArray(context.api());
-  }
-  ~State() {
-    try {
-      const gl::GlContext::Current current(context);
-      programs.clear();
-      voxels.reset(), tables.reset(), nodes.reset(), vao.reset();
-    } catch (const Error&) {
-      // The context could not be made current: destroying it frees its objects all the same.
-    }
-  }
-
-  const gl::GlProgram& program(const std::string& key,
-                               const std::function<std::vector<gl::ShaderStage>()>& stages) {
-    auto& p = programs[key];
-    if (!p) p = std::make_unique<gl::GlProgram>(context, key, stages());
-    return *p;
-  }
-
-  // Uploads the voxel list, the tables and the shading nodes unless this classification is the
-  // one uploaded.
-  void upload(const ClassifiedVolume& cv) {
-    if (list && uploaded_for.lock() == cv.derived) return;
-    list.reset();
-    voxels.reset(), tables.reset(), nodes.reset();
-    const gl::GlLimits& limits = context.limits();
-    const int nx = cv.dims[0] + 1, ny = cv.dims[1] + 1, nz = cv.dims[2] + 1;
-    if (std::max({nx, ny, nz}) > limits.max_3d_texture_size)
-      throw Error(fmt::format("gl: a {}×{}×{} volume is beyond GL_MAX_3D_TEXTURE_SIZE {} (its "
-                              "shading field needs {}×{}×{} texels)",
-                              cv.dims[0], cv.dims[1], cv.dims[2], limits.max_3d_texture_size, nx,
-                              ny, nz));
-    auto fresh = gl::GlVoxelList::of(cv);
-    const std::size_t bytes = fresh->voxels.size() * sizeof(gl::GpuVoxel);
-    checkStorage(limits, bytes,
-                 fmt::format("the voxel list ({} voxels that scatter or absorb, of {}×{}×{})",
-                             fresh->voxels.size(), cv.dims[0], cv.dims[1], cv.dims[2]));
-    checkStorage(limits, fresh->tables.size() * sizeof(float),
-                 fmt::format("the classification tables ({} entries × {} channels)", cv.entries,
-                             cv.k));
-    const gl::GlApi& gl = context.api();
-    voxels = gl::makeBuffer(gl, bytes, fresh->voxels.data());
-    tables = gl::makeBuffer(gl, fresh->tables.size() * sizeof(float), fresh->tables.data());
-    GLuint id = 0;
-    gl.CreateTextures(GL_TEXTURE_3D, 1, &id);
-    nodes = gl::GlObject(id, gl.DeleteTextures);
-    gl.TextureStorage3D(id, 1, GL_R32F, nx, ny, nz);
-    gl.TextureSubImage3D(id, 0, 0, 0, 0, nx, ny, nz, GL_RED, GL_FLOAT,
-                         fresh->splat_voxels->cellMeans().data());
-    context.check("uploading the voxel list");
-    list = std::move(fresh);
-    uploaded_for = cv.derived;
-  }
-};
+// Uploads the voxel list, the tables and the shading nodes unless this classification is the
+// one uploaded.
+void gl::SplatUpload::ensure(const gl::GlContext& context, const ClassifiedVolume& cv) {
+  if (list && uploaded_for.lock() == cv.derived) return;
+  list.reset();
+  voxels.reset(), tables.reset(), nodes.reset();
+  const gl::GlLimits& limits = context.limits();
+  const int nx = cv.dims[0] + 1, ny = cv.dims[1] + 1, nz = cv.dims[2] + 1;
+  if (std::max({nx, ny, nz}) > limits.max_3d_texture_size)
+    throw Error(fmt::format("gl: a {}×{}×{} volume is beyond GL_MAX_3D_TEXTURE_SIZE {} (its "
+                            "shading field needs {}×{}×{} texels)",
+                            cv.dims[0], cv.dims[1], cv.dims[2], limits.max_3d_texture_size, nx,
+                            ny, nz));
+  auto fresh = gl::GlVoxelList::of(cv);
+  const std::size_t bytes = fresh->voxels.size() * sizeof(gl::GpuVoxel);
+  checkStorage(limits, bytes,
+               fmt::format("the voxel list ({} voxels that scatter or absorb, of {}×{}×{})",
+                           fresh->voxels.size(), cv.dims[0], cv.dims[1], cv.dims[2]));
+  checkStorage(limits, fresh->tables.size() * sizeof(float),
+               fmt::format("the classification tables ({} entries × {} channels)", cv.entries,
+                           cv.k));
+  const gl::GlApi& gl = context.api();
+  voxels = gl::makeBuffer(gl, bytes, fresh->voxels.data());
+  tables = gl::makeBuffer(gl, fresh->tables.size() * sizeof(float), fresh->tables.data());
+  GLuint id = 0;
+  gl.CreateTextures(GL_TEXTURE_3D, 1, &id);
+  nodes = gl::GlObject(id, gl.DeleteTextures);
+  gl.TextureStorage3D(id, 1, GL_R32F, nx, ny, nz);
+  gl.TextureSubImage3D(id, 0, 0, 0, 0, nx, ny, nz, GL_RED, GL_FLOAT,
+                       fresh->splat_voxels->cellMeans().data());
+  context.check("uploading the voxel list");
+  list = std::move(fresh);
+  uploaded_for = cv.derived;
+}
 
 // One frame: the projected splats in GPU buffers, then the passes and the read-back. Splat slot
 // s holds the splat n − 1 − s of the front-to-back order (back to front in slot order).
-class GlSplatRenderer::Frame {
+class GlSplatFrame {
  public:
-  Frame(State& state, const RenderRequest& req, const splat::SplatSettings& settings)
+  GlSplatFrame(gl::GlState& state, const RenderRequest& req, const splat::SplatSettings& settings)
       : st_(state), ctx_(state.context), gl_(ctx_.api()), req_(req), cv_(req.volume),
         settings_(settings), W_(req.width), H_(req.height), k_(cv_.k), kt_(cv_.t_channels),
         scalar_(kt_ == 1), stride_(1 + kt_ + k_),
@@ -133,7 +99,7 @@ class GlSplatRenderer::Frame {
   void readBack(LightIndependentImage& image);
   void opticalDepth(LightIndependentImage& image);
 
-  State& st_;
+  gl::GlState& st_;
   const gl::GlContext& ctx_;
   const gl::GlApi& gl_;
   const RenderRequest& req_;
@@ -155,15 +121,15 @@ class GlSplatRenderer::Frame {
   std::unique_ptr<gl::LayeredTarget> s_target_;
 };
 
-LightIndependentImage GlSplatRenderer::Frame::render(ProgressCounter& progress) {
-  st_.upload(cv_);
+LightIndependentImage GlSplatFrame::render(ProgressCounter& progress) {
+  st_.splat.ensure(ctx_, cv_);
   // Project, cull and sort on the CPU exactly as the CPU splat list does (the same positions,
   // footprints and depth order).
   const splat::Projector projector(req_.camera, W_, H_, cv_.spacing, settings_.kernel);
   const splat::Footprint any = projector.footprint(glm::dvec3(0.0));
   ortho_ = projector.orthographic();
   depth_sigma_ = any.depth_sigma;
-  layOut(splat::projectVoxels(*st_.list->splat_voxels, cv_, projector, W_, H_), any);
+  layOut(splat::projectVoxels(*st_.splat.list->splat_voxels, cv_, projector, W_, H_), any);
   LightIndependentImage image(W_, H_, k_, kt_);
   if (n_ == 0) {
     for (int c = 0; c < kt_; ++c) std::ranges::fill(image.planeFloat(k_ + c), 1.f);
@@ -198,7 +164,7 @@ LightIndependentImage GlSplatRenderer::Frame::render(ProgressCounter& progress) 
   return image;
 }
 
-void GlSplatRenderer::Frame::layOut(const splat::ProjectedVoxels& projected,
+void GlSplatFrame::layOut(const splat::ProjectedVoxels& projected,
                                     const splat::Footprint& any) {
   n_ = projected.ids.size();
   order_.resize(n_);
@@ -220,7 +186,7 @@ void GlSplatRenderer::Frame::layOut(const splat::ProjectedVoxels& projected,
   if (ortho_) putFootprint(0, any);
 }
 
-void GlSplatRenderer::Frame::uploadSplats() {
+void GlSplatFrame::uploadSplats() {
   const gl::GlLimits& limits = ctx_.limits();
   if (static_cast<long long>(n_) * stride_ > limits.max_texture_buffer)
     throw Error(fmt::format("gl: {} splats × {} quantities are beyond GL_MAX_TEXTURE_BUFFER_SIZE "
@@ -241,7 +207,7 @@ void GlSplatRenderer::Frame::uploadSplats() {
 }
 
 // Shades and classifies every splat once (a sheet draws each about 2·radius/sheet times).
-void GlSplatRenderer::Frame::prepare() {
+void GlSplatFrame::prepare() {
   const gl::GlProgram& p = st_.program(fmt::format("prepare k={} kt={}", k_, kt_), [&] {
     return std::vector<gl::ShaderStage>{{GL_COMPUTE_SHADER, gl::prepareShader(k_, kt_)}};
   });
@@ -266,13 +232,13 @@ void GlSplatRenderer::Frame::prepare() {
                             std::ranges::any_of(cv_.specular, [](float s) { return s > 0.f; });
   p.set("u_specular", any_specular ? float(req_.shading.specular) : 0.f);
   p.set("u_shininess", float(req_.shading.shininess));
-  gl_.BindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, st_.voxels.id());
-  gl_.BindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, st_.tables.id());
+  gl_.BindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, st_.splat.voxels.id());
+  gl_.BindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, st_.splat.tables.id());
   gl_.BindBufferBase(GL_SHADER_STORAGE_BUFFER, 2, order_buffer_.id());
   gl_.BindImageTexture(0, quantity_texture_.id(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_R32F);
   gl_.BindBufferBase(GL_SHADER_STORAGE_BUFFER, 4, geometry_buffer_.id());
   gl_.BindBufferBase(GL_SHADER_STORAGE_BUFFER, 5, footprint_buffer_.id());
-  gl_.BindTextureUnit(1, st_.nodes.id());
+  gl_.BindTextureUnit(1, st_.splat.nodes.id());
   gl_.UseProgram(p.id());
   const std::size_t groups = (n_ + 63) / 64;
   const std::size_t gx = std::min<std::size_t>(groups, ctx_.limits().max_compute_groups_x);
@@ -285,7 +251,7 @@ void GlSplatRenderer::Frame::prepare() {
 // Point sprites cost llvmpipe one primitive per splat instead of two triangles (measured: the
 // engine's direct pass 2.5 s → 1.9 s, sheets 29 s → 14 s); quads where a footprint is wider
 // than the largest point.
-void GlSplatRenderer::Frame::choosePrimitive() {
+void GlSplatFrame::choosePrimitive() {
   float widest = 0.f;
   for (std::size_t f = 0; f < footprints_.size(); f += 8)
     widest = std::max({widest, footprints_[f + 4], footprints_[f + 5]});
@@ -293,7 +259,7 @@ void GlSplatRenderer::Frame::choosePrimitive() {
   margin_ = points_ ? static_cast<int>(std::ceil(widest)) + 2 : 0;
 }
 
-const gl::GlProgram& GlSplatRenderer::Frame::splatProgram(PassOutput output, int targets) {
+const gl::GlProgram& GlSplatFrame::splatProgram(PassOutput output, int targets) {
   const gl::GlProgram& p = st_.program(
       fmt::format("splat k={} kt={} output={} targets={} points={}", k_, kt_, int(output),
                   targets, points_),
@@ -317,7 +283,7 @@ const gl::GlProgram& GlSplatRenderer::Frame::splatProgram(PassOutput output, int
   return p;
 }
 
-const gl::GlProgram& GlSplatRenderer::Frame::compositeProgram(PassOutput output, int targets) {
+const gl::GlProgram& GlSplatFrame::compositeProgram(PassOutput output, int targets) {
   const gl::GlProgram& p = st_.program(
       fmt::format("composite k={} kt={} output={} targets={}", k_, kt_, int(output), targets),
       [&] {
@@ -330,7 +296,7 @@ const gl::GlProgram& GlSplatRenderer::Frame::compositeProgram(PassOutput output,
   return p;
 }
 
-void GlSplatRenderer::Frame::drawSlots(std::size_t first, std::size_t count) const {
+void GlSplatFrame::drawSlots(std::size_t first, std::size_t count) const {
   if (points_)
     gl_.DrawArrays(GL_POINTS, static_cast<GLint>(first), static_cast<GLsizei>(count));
   else
@@ -339,7 +305,7 @@ void GlSplatRenderer::Frame::drawSlots(std::size_t first, std::size_t count) con
 
 // S: chromatic, one dual-source pass per 4 channels; scalar, up to 8 targets of 3 channels
 // (+ T in alpha) per pass. `source` draws what is composited: splats or a sheet buffer.
-void GlSplatRenderer::Frame::compositeS(
+void GlSplatFrame::compositeS(
     const std::function<const gl::GlProgram&(PassOutput, int)>& use,
     const std::function<void()>& source) {
   if (scalar_) {
@@ -360,7 +326,7 @@ void GlSplatRenderer::Frame::compositeS(
   }
 }
 
-void GlSplatRenderer::Frame::compositeSheets(ProgressCounter& progress) {
+void GlSplatFrame::compositeSheets(ProgressCounter& progress) {
   const double min_spacing = std::min({cv_.spacing.x, cv_.spacing.y, cv_.spacing.z});
   const double thickness = settings_.sheet_voxels * min_spacing;
   const double reach = settings_.kernel.cutoff() * depth_sigma_;
@@ -417,7 +383,7 @@ void GlSplatRenderer::Frame::compositeSheets(ProgressCounter& progress) {
 
 // Window row y is image row y (the vertex shader maps image y to window y), so the layers come
 // back in image order.
-void GlSplatRenderer::Frame::readBack(LightIndependentImage& image) {
+void GlSplatFrame::readBack(LightIndependentImage& image) {
   std::vector<float> rgba;
   const std::size_t pixels = image.pixels();
   const int per_layer = scalar_ ? 3 : 4;
@@ -435,7 +401,7 @@ void GlSplatRenderer::Frame::readBack(LightIndependentImage& image) {
 }
 
 // T = exp(−Σ τ_t): the optical depth of every splat along the ray, additively.
-void GlSplatRenderer::Frame::opticalDepth(LightIndependentImage& image) {
+void GlSplatFrame::opticalDepth(LightIndependentImage& image) {
   const int t_layers = (kt_ + 3) / 4;
   gl::LayeredTarget optical_depth(ctx_, W_ + 2 * margin_, H_ + 2 * margin_, t_layers,
                                   "the optical depth image");
@@ -461,45 +427,17 @@ void GlSplatRenderer::Frame::opticalDepth(LightIndependentImage& image) {
   }
 }
 
-GlSplatRenderer::GlSplatRenderer() = default;
-GlSplatRenderer::~GlSplatRenderer() = default;
-
-const BackendInfo& GlSplatRenderer::info() const {
-  static const BackendInfo info{
-      "gl", "the splat backend's algorithm on OpenGL 4.5 core, offscreen through OSMesa",
-      {.perspective = true, .spectral_transmittance = true, .max_channels = 128,
-       .needs_gl = true},
-      splat::splatOptionSpecs()};
-  return info;
-}
-
-std::uint64_t GlSplatRenderer::workingBytes(const RenderRequest& req,
-                                            const BackendOptions&) const {
+std::uint64_t gl::splatWorkingBytes(const RenderRequest& req) {
   const int k = req.volume.k, kt = req.volume.t_channels;
   const std::uint64_t layers = (k + 3) / 4 + (1 + kt + k + 3) / 4 + (kt + 3) / 4 + 1;
   return layers * std::uint64_t(req.width) * std::uint64_t(req.height) * 4 * sizeof(float);
 }
 
-LightIndependentImage GlSplatRenderer::renderImpl(const RenderRequest& req,
-                                                  const BackendOptions& options,
-                                                  ProgressCounter& progress) const {
-  const std::lock_guard lock(mutex_);
-  if (!state_) state_ = std::make_unique<State>();
-  const gl::GlContext::Current current(state_->context);
-  const gl::GlLimits& limits = state_->context.limits();
-  // An image beyond the limits fails before anything big is allocated.
-  if (req.width > limits.max_texture_size || req.height > limits.max_texture_size)
-    throw Error(fmt::format("gl: a {}×{} image is beyond GL_MAX_TEXTURE_SIZE {}", req.width,
-                            req.height, limits.max_texture_size));
-  Frame frame(*state_, req, splat::splatSettings(options));
+LightIndependentImage gl::renderSplats(gl::GlState& state, const RenderRequest& request,
+                                   const splat::SplatSettings& settings,
+                                   ProgressCounter& progress) {
+  GlSplatFrame frame(state, request, settings);
   return frame.render(progress);
 }
-
-namespace backends {
-BackendEntry gl() {
-  return {GlSplatRenderer().info(), [] { return std::make_unique<GlSplatRenderer>(); },
-          [] { return std::make_unique<GlRelighter>(); }, {}};
-}
-}  // namespace backends
 
 }  // namespace svr
