@@ -11,6 +11,8 @@ Inputs (any may be missing; its rows are then left out):
                                      single-threaded, so its time is the t1 run's in both
   raycast_t<N>.json                  svr_raycast_peer_bench at OMP_NUM_THREADS=N
   vtk_t<N>.json                      vtk_bench.py --threads N
+  glraycast.json, vtk_gpu.json       svr_raycast_peer_bench's GlRaycast rows and vtk_bench.py
+                                     --mapper gpu, both on llvmpipe (threads: its own, one per core)
 """
 import glob
 import json
@@ -89,6 +91,20 @@ def main():
                     rows.append(dict(peer="VTK fixed-point", peer_threads=threads, ours="raycast",
                                      model=model, size=int(size), view=view, threads=threads,
                                      peer_ms=rec["ms"], ours_ms=ms, ratio=ms / rec["ms"]))
+    # VTK's GPU ray caster against our gl.mode=raycast, both on llvmpipe.
+    gpu_path, gl_path = os.path.join(folder, "vtk_gpu.json"), os.path.join(folder, "glraycast.json")
+    if os.path.exists(gpu_path) and os.path.exists(gl_path):
+        ours = bench_times(gl_path)
+        gpu = json.load(open(gpu_path))
+        for rec in gpu["runs"]:
+            _, _, size, view = rec["name"].split("/")
+            for model in ("rgb", "factor:6"):
+                ms = ours.get(f"GlRaycast/{model}/{size}/{view}")
+                if ms:
+                    rows.append(dict(peer="VTK GPU (llvmpipe)", peer_threads=gpu["threads"],
+                                     ours="gl raycast", model=model, size=int(size), view=view,
+                                     threads=gpu["threads"], peer_ms=rec["ms"], ours_ms=ms,
+                                     ratio=ms / rec["ms"]))
     if not rows:
         sys.exit(f"table: no peer results in {folder}")
 
@@ -116,7 +132,7 @@ def main():
             print()
         print(f"Load average when the table was made: {load}.")
     else:
-        widths = [16, 10, 9, 6, 6, 7, 9, 9, 6]
+        widths = [18, 10, 9, 6, 6, 7, 9, 9, 6]
         line = lambda vals: " ".join(f"{v:<{w}}" if i < 3 else f"{v:>{w}}"
                                      for i, (v, w) in enumerate(zip(vals, widths)))
         for title, table in (("Every view", rows), ("Geometric mean over the views", summary)):

@@ -1,6 +1,8 @@
 #!/usr/bin/env python3
-"""VTK's CPU ray caster (vtkFixedPointVolumeRayCastMapper, what ParaView uses without a GPU) on
-the engine views that svr_raycast_peer_bench times for our raycaster.
+"""VTK's ray casters on the engine views that svr_raycast_peer_bench times for ours: the CPU one
+(--mapper fixedpoint: vtkFixedPointVolumeRayCastMapper, what ParaView uses without a GPU)
+against our raycast backend, and the OpenGL one (--mapper gpu: vtkGPUVolumeRayCastMapper, on
+the X server's GL, Mesa's llvmpipe under Xvfb here) against our gl.mode=raycast.
 
 Everything comes from `svr_raycast_peer_bench --export=PREFIX` (PREFIX.json, PREFIX.raw): the
 voxels, the opacity per unit length and the rgb reflectance at each of the 256 values, the
@@ -15,8 +17,13 @@ precomputed per voxel (quantised normals) where we interpolate precomputed gradi
 early termination threshold is built in: a ray stops once its 15-bit accumulated opacity
 passes 32512/32767, a remaining transmittance of about 0.0078 (ours: the scene's 0.01).
 
-Time per frame is the mapper's own GetTimeToDraw(), which covers the ray casting and the blit
-of its image into the window; the wall time of the whole Render() is recorded too. VTK needs an X display here
+Time per frame: for the fixed-point mapper its own GetTimeToDraw(), which covers the ray casting
+and the blit of its image into the window; for the GPU mapper the wall time of Render() (GL
+runs asynchronously, so only a finished frame counts: llvmpipe finishes it at the buffer swap),
+which our GlRaycast rows match by including the read-back. The wall time of the whole Render()
+is recorded for both. The GPU mapper's sample distance is matched as the CPU one's; its
+gradients come from its own shader (central differences), its opacity is corrected for the
+sample distance as ours. VTK needs an X display here
 (Debian's VTK 9.1 has no OSMesa or EGL window): bench/peers/run starts this under xvfb-run.
 
   python3 bench/peers/vtk_bench.py --scene out/peers/engine --threads 1 --json vtk.json
@@ -77,21 +84,30 @@ def main():
     ap.add_argument("--sizes", default="512,800")
     ap.add_argument("--views", help="azimuths to time, e.g. -60,44 (default: every exported one)")
     ap.add_argument("--threads", type=int, default=1)
+    ap.add_argument("--mapper", choices=["fixedpoint", "gpu"], default="fixedpoint")
     ap.add_argument("--frames", type=int, default=5, help="timed frames per view (after one warm-up)")
     ap.add_argument("--json", required=True, help="output: one record per view and size")
     ap.add_argument("--png", help="write each view's image to PNG files with this prefix")
     args = ap.parse_args()
 
     scene = json.load(open(args.scene + ".json"))
-    mapper = vtk.vtkFixedPointVolumeRayCastMapper()
+    if args.mapper == "gpu":
+        mapper = vtk.vtkOpenGLGPUVolumeRayCastMapper()
+        mapper.AutoAdjustSampleDistancesOff()
+        mapper.LockSampleDistanceToInputSpacingOff()
+        mapper.SetSampleDistance(scene["step_world"])
+        mapper.SetImageSampleDistance(1.0)
+        mapper.SetMaxMemoryInBytes(2 << 30)
+    else:
+        mapper = vtk.vtkFixedPointVolumeRayCastMapper()
+        mapper.SetNumberOfThreads(args.threads)
+        mapper.AutoAdjustSampleDistancesOff()
+        mapper.SetSampleDistance(scene["step_world"])
+        mapper.SetInteractiveSampleDistance(scene["step_world"])
+        mapper.SetImageSampleDistance(1.0)
+        mapper.SetMinimumImageSampleDistance(1.0)
+        mapper.SetMaximumImageSampleDistance(1.0)
     mapper.SetInputData(image_data(scene, args.scene))
-    mapper.SetNumberOfThreads(args.threads)
-    mapper.AutoAdjustSampleDistancesOff()
-    mapper.SetSampleDistance(scene["step_world"])
-    mapper.SetInteractiveSampleDistance(scene["step_world"])
-    mapper.SetImageSampleDistance(1.0)
-    mapper.SetMinimumImageSampleDistance(1.0)
-    mapper.SetMaximumImageSampleDistance(1.0)
     volume = vtk.vtkVolume()
     volume.SetMapper(mapper)
     volume.SetProperty(volume_property(scene))
@@ -131,9 +147,12 @@ def main():
                 window.Render()
                 wall.append(1e3 * (time.perf_counter() - t))
                 draw.append(1e3 * mapper.GetTimeToDraw())
-            rec = {"name": f"VTK/fixedpoint/{size}/az{cam['azimuth']:g}", "threads": args.threads,
-                   "ms": float(np.median(draw)), "wall_ms": float(np.median(wall)),
+            ms = np.median(wall if args.mapper == "gpu" else draw)
+            rec = {"name": f"VTK/{args.mapper}/{size}/az{cam['azimuth']:g}",
+                   "threads": args.threads, "ms": float(ms), "wall_ms": float(np.median(wall)),
                    "frames": args.frames}
+            if args.mapper == "gpu":
+                rec["gl_renderer"] = window.ReportCapabilities().split("OpenGL renderer string:")[-1].split("\n")[0].strip()
             records.append(rec)
             print(f"{rec['name']:<34} threads {args.threads}  {rec['ms']:8.1f} ms "
                   f"(Render() {rec['wall_ms']:.1f} ms)", flush=True)
