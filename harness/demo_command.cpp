@@ -4,11 +4,13 @@
 #include <memory>
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <nlohmann/json.hpp>
 
 #include "harness/command.h"
 #include "harness/compare_command.h"
+#include "renderers/registry.h"
 #include "spectral/atomic_file.h"
 #include "spectral/error.h"
 
@@ -28,6 +30,9 @@ int runDemo(const DemoOptions& o) {
                        : std::vector<std::string>{"rgb", "factor:4", "factor:6", "factor:8",
                                                   "spectral:31"};
     c.width = c.height = o.quick ? 128 : 256;
+    // gl ray casts by default; its splats run beside it, so the report shows both.
+    const std::vector<std::string> built = rendererNames();
+    if (std::ranges::find(built, "gl") != built.end()) c.variants = {"gl.mode=splat"};
     c.charts = false;  // one combined page below
     c.quiet = o.quiet;
     summaries.push_back(runComparison(c));
