@@ -9,6 +9,7 @@ PACKAGES=(
   build-essential cmake ninja-build pkg-config git
   libeigen3-dev libomp-dev libglm-dev
   libosmesa6-dev libopenimageio-dev openimageio-tools
+  libegl-dev libegl-mesa0  # the gl backend's EGL platform: libglvnd's libEGL and Mesa's vendor library
   libgtest-dev libgmock-dev libbenchmark-dev
   libcli11-dev nlohmann-json3-dev libfmt-dev
   zlib1g-dev libteem-dev libssl-dev

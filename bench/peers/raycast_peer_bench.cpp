@@ -7,6 +7,8 @@
 //                                             on llvmpipe here) against vtkGPUVolumeRayCastMapper
 //                                             on the same llvmpipe; the time includes reading
 //                                             the image back
+//   GlSplat/<rgb|factor:6>/256/az-60          gl.mode=splat (sheets) on the scene's view, for
+//                                             the ratio gl raycast / gl splat at 256²
 // Classification cached. Threads: OMP_NUM_THREADS for the CPU raycaster (bench/peers/run sets it
 // equal to VTK's SetNumberOfThreads); llvmpipe's LP_NUM_THREADS for both GL rows.
 // Every view renders one untimed frame first (VTK's script does too), then three repetitions of
@@ -37,9 +39,13 @@ constexpr double kAzimuths[] = {-60.0, 0.0, 44.0};
 void raycastFrame(benchmark::State& state, const std::string& backend, const std::string& model,
                   int size, double azimuth) {
   const ClassifiedVolume& cv = engineClassified(model);
-  const auto renderer = makeRenderer(backend);
+  auto renderer = makeRenderer(backend == "gl-splat" ? "gl" : backend);
   RenderRequest request = engineRequest(cv, azimuth, size);
   if (backend == "gl") request.options["gl"] = {{"mode", "raycast"}, {"gradients", "precomputed"}};
+  if (backend == "gl-splat") {
+    renderer = makeRenderer("gl");
+    request.options["gl"] = {{"mode", "splat"}};
+  }
   // One untimed frame first: it builds what the renderer keeps with the classification (the
   // gradient volume), which VTK's warm-up frame builds too.
   benchmark::DoNotOptimize(renderer->render(request).planeFloat(0).data());
@@ -103,6 +109,16 @@ void registerAll() {
               ->MinTime(0.5)
               ->Repetitions(3)  // the table takes the median, as VTK's rows do
               ->ReportAggregatesOnly(true);
+  }
+  if (!gl_built) return;
+  for (const char* model : {"rgb", "factor:6"}) {
+    for (const auto& [row, backend] : {std::pair{"GlRaycast", "gl"}, std::pair{"GlSplat", "gl-splat"}})
+      benchmark::RegisterBenchmark(fmt::format("{}/{}/256/az-60", row, model).c_str(), raycastFrame,
+                                   std::string(backend), std::string(model), 256, -60.0)
+          ->UseRealTime()
+          ->Unit(benchmark::kMillisecond)
+          ->Iterations(3)
+          ->Repetitions(1);
   }
 }
 

@@ -105,6 +105,16 @@ def main():
                                      ours="gl raycast", model=model, size=int(size), view=view,
                                      threads=gpu["threads"], peer_ms=rec["ms"], ours_ms=ms,
                                      ratio=ms / rec["ms"]))
+    # Our own gl splats against our gl ray caster at 256² (issue 18: at least 3× faster).
+    if os.path.exists(gl_path):
+        ours = bench_times(gl_path)
+        for model in ("rgb", "factor:6"):
+            ms, splat = ours.get(f"GlRaycast/{model}/256/az-60"), ours.get(f"GlSplat/{model}/256/az-60")
+            if ms and splat:
+                rows.append(dict(peer="gl splat (ours)", peer_threads=os.cpu_count(),
+                                 ours="gl raycast", model=model, size=256, view="az-60",
+                                 threads=os.cpu_count(), peer_ms=splat, ours_ms=ms,
+                                 ratio=ms / splat))
     if not rows:
         sys.exit(f"table: no peer results in {folder}")
 
