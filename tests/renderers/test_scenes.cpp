@@ -36,6 +36,13 @@ Scene slabScene(double sigma, const std::string& absorption, double step_voxels)
   return parseScene(j, rendererDataDir() + "/scenes/slab.json", rendererLibrary());
 }
 
+double slabVoxels(const Scene& scene) {
+  const auto& d = scene.volume.dims();
+  double n = 0;
+  for (int z = 0; z < d[2]; ++z) n += scene.volume.value(d[0] / 2, d[1] / 2, z);
+  return n;
+}
+
 Scene phantomScene() {
   Scene s = loadScene(rendererDataDir() + "/scenes/phantom.json", rendererLibrary());
   s.width = s.height = 48;

@@ -23,6 +23,9 @@ const Observer& rendererObserver();
 // orthographic, 32×32 pixels, early termination off.
 Scene slabScene(double sigma, const std::string& absorption, double step_voxels);
 
+// Voxels of the slab's centre column: the line integral of the trilinear field through it.
+double slabVoxels(const Scene& scene);
+
 // The procedural phantom with four materials (one spectral absorber, one x-ray), 48×48 pixels.
 Scene phantomScene();
 

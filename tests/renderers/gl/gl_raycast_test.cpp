@@ -48,13 +48,6 @@ ImageDifference differenceUnderD65(const LightIndependentImage& a, const LightIn
   return compareRelit(a, model, b, model, d65, test::rendererObserver().xyz(d65));
 }
 
-double slabVoxels(const Scene& scene) {
-  const auto& d = scene.volume.dims();
-  double n = 0;
-  for (int z = 0; z < d[2]; ++z) n += scene.volume.value(d[0] / 2, d[1] / 2, z);
-  return n;
-}
-
 // Extinction linear in the value: the midpoint rule integrates the trilinear field exactly, so
 // T is exp(−σ d) to float rounding, on both platforms; and every plane is the CPU raycaster's
 // (relative 1e-5: the same samples in float).
@@ -67,7 +60,7 @@ TEST(GlRaycast, SlabTransmittanceIsExpMinusSigmaD) {
     SCOPED_TRACE(platform);
     const auto img = test::render(GlRenderer(), scene, cv, glOptions(platform));
     ASSERT_EQ(img.transmittanceChannels(), 1);
-    EXPECT_NEAR(img.transmittance(0, 16, 16), std::exp(-0.05 * slabVoxels(scene)), 1e-5);
+    EXPECT_NEAR(img.transmittance(0, 16, 16), std::exp(-0.05 * test::slabVoxels(scene)), 1e-5);
     EXPECT_LT(largestDifference(img, cpu), 1e-5);
   }
 }
@@ -80,7 +73,7 @@ TEST(GlRaycast, SpectralSlabOverSeveralPasses) {
   const ClassifiedVolume cv = classifyScene(scene, *model);
   const auto img = test::render(GlRenderer(), scene, cv, glOptions("osmesa"));
   ASSERT_EQ(img.transmittanceChannels(), 31);
-  const double d = slabVoxels(scene);
+  const double d = test::slabVoxels(scene);
   const auto cpu = test::render(RaycastRenderer(), scene, cv, glOptions("osmesa"));
   for (int c = 0; c < 31; c += 5)
     EXPECT_NEAR(img.transmittance(c, 16, 16), cpu.transmittance(c, 16, 16), 1e-5) << c;

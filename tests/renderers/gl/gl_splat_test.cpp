@@ -44,13 +44,6 @@ nlohmann::json smoothKernel(const std::string& mode) {
           {"splat", {{"mode", mode}, {"sigma", 0.7}, {"radius", 2.5}}}};
 }
 
-double slabVoxels(const Scene& scene) {
-  const auto& d = scene.volume.dims();
-  double n = 0;
-  for (int z = 0; z < d[2]; ++z) n += scene.volume.value(d[0] / 2, d[1] / 2, z);
-  return n;
-}
-
 ImageDifference differenceUnderD65(const LightIndependentImage& a, const LightIndependentImage& b,
                                    const ColourModel& model) {
   const Spectrum d65 = test::rendererObserver().unitLuminance(test::rendererLibrary().get("D65"));
@@ -78,7 +71,7 @@ Scene sphereScene() {
 TEST(GlSplat, SlabTransmittanceIsExpMinusSigmaD) {
   const auto model = makeSpectralModel(test::rendererObserver(), 4);
   const Scene scene = test::slabScene(0.05, "", 0.5);
-  const double expected = std::exp(-0.05 * slabVoxels(scene));
+  const double expected = std::exp(-0.05 * test::slabVoxels(scene));
   for (const std::string mode : {"sheet", "direct"}) {
     const auto img = renderScene(scene, *model, GlRenderer(), smoothKernel(mode));
     ASSERT_EQ(img.transmittanceChannels(), 1);
@@ -93,7 +86,7 @@ TEST(GlSplat, SlabTransmittanceIsExpMinusSigmaD) {
 TEST(GlSplat, SpectralSlabTransmittancePerChannel) {
   const auto model = makeSpectralModel(test::rendererObserver(), 81);
   const Scene scene = test::slabScene(0.05, "ColorChecker/cyan", 0.5);
-  const double d = slabVoxels(scene);
+  const double d = test::slabVoxels(scene);
   const auto img = renderScene(scene, *model, GlRenderer(), smoothKernel("sheet"));
   ASSERT_EQ(img.transmittanceChannels(), 81);
   const Eigen::VectorXd a = test::rendererLibrary().get("ColorChecker/cyan").values();

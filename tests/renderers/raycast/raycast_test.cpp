@@ -28,14 +28,6 @@ LightIndependentImage renderScene(const Scene& scene, const ColourModel& model,
   return renderer.render(request);
 }
 
-// Voxels of the slab's centre column: the line integral of the trilinear field through it.
-double slabVoxels(const Scene& scene) {
-  const auto& d = scene.volume.dims();
-  double n = 0;
-  for (int z = 0; z < d[2]; ++z) n += scene.volume.value(d[0] / 2, d[1] / 2, z);
-  return n;
-}
-
 TEST(Raycast, SlabTransmittanceIsExpMinusSigmaD) {
   const auto model = makeSpectralModel(test::rendererObserver(), 81);
   const RaycastRenderer renderer;
@@ -49,7 +41,7 @@ TEST(Raycast, SlabTransmittanceIsExpMinusSigmaD) {
     scene.transfer_function.opacity = {{0.0, 0.0}, {0.49, 0.0}, {0.51, 1.0}, {1.0, 1.0}};
     // A slanted view, so the samples do not line up with the voxels: the chord is d / sin 60°.
     scene.camera = Camera::orbit(20.0, 60.0, 200.0, 0.0, 20.0);
-    const double d = slabVoxels(scene) * scene.volume.spacing().z / std::sin(M_PI / 3);
+    const double d = test::slabVoxels(scene) * scene.volume.spacing().z / std::sin(M_PI / 3);
     ASSERT_GT(d, 5.0);
     const auto img = renderScene(scene, *model, renderer);
     ASSERT_EQ(img.transmittanceChannels(), 1);  // achromatic: scalar transmittance
@@ -66,14 +58,14 @@ TEST(Raycast, SlabWithLinearOpacityIsExactAtAnyStep) {
   for (double step : {1.0, 0.25}) {
     const Scene scene = test::slabScene(0.05, "", step);
     const auto img = renderScene(scene, *model, RaycastRenderer());
-    EXPECT_NEAR(img.transmittance(0, 16, 16), std::exp(-0.05 * slabVoxels(scene)), 1e-5);
+    EXPECT_NEAR(img.transmittance(0, 16, 16), std::exp(-0.05 * test::slabVoxels(scene)), 1e-5);
   }
 }
 
 TEST(Raycast, SpectralSlabTransmittancePerChannel) {
   const auto model = makeSpectralModel(test::rendererObserver(), 81);
   const Scene scene = test::slabScene(0.05, "ColorChecker/cyan", 0.125);
-  const double d = slabVoxels(scene);
+  const double d = test::slabVoxels(scene);
   const auto img = renderScene(scene, *model, RaycastRenderer());
   ASSERT_EQ(img.transmittanceChannels(), 81);
   const Eigen::VectorXd a = test::rendererLibrary().get("ColorChecker/cyan").values();
@@ -145,7 +137,7 @@ TEST(Raycast, PerspectiveCameraSeesTheSameSlab) {
   const auto model = makeSpectralModel(test::rendererObserver(), 4);
   const auto img = renderScene(scene, *model, RaycastRenderer());
   // The centre ray is perpendicular to the slab: the same transmittance as orthographic.
-  const double d = slabVoxels(scene);
+  const double d = test::slabVoxels(scene);
   EXPECT_NEAR(img.transmittance(0, 16, 16), std::exp(-0.05 * d), 2e-3);
 }
 

@@ -18,13 +18,6 @@
 namespace svr {
 namespace {
 
-double slabVoxels(const Scene& scene) {
-  const auto& d = scene.volume.dims();
-  double n = 0;
-  for (int z = 0; z < d[2]; ++z) n += scene.volume.value(d[0] / 2, d[1] / 2, z);
-  return n;
-}
-
 // With extinction linear in the value, the field along a ray through the slab is piecewise
 // linear with its kinks on the z slices, which are the slices shear-warp samples; the slice sum
 // is then the exact line integral, at any angle, and so is exp(−σ d).
@@ -34,7 +27,7 @@ TEST(ShearWarp, SlabTransmittanceIsExpMinusSigmaD) {
   for (double elevation : {90.0, 60.0, 50.0}) {
     Scene scene = test::slabScene(sigma, "", 0.5);
     scene.camera = Camera::orbit(20.0, elevation, 200.0, 0.0, 20.0);
-    const double d = slabVoxels(scene) * scene.volume.spacing().z /
+    const double d = test::slabVoxels(scene) * scene.volume.spacing().z /
                      std::sin(elevation * M_PI / 180.0);
     const auto img = test::render(ShearWarpRenderer(), scene, *model);
     ASSERT_EQ(img.transmittanceChannels(), 1);
@@ -47,7 +40,7 @@ TEST(ShearWarp, SpectralSlabTransmittancePerChannel) {
   const auto model = makeSpectralModel(test::rendererObserver(), 81);
   Scene scene = test::slabScene(0.05, "ColorChecker/cyan", 0.125);
   scene.camera = Camera::orbit(30.0, 55.0, 200.0, 0.0, 20.0);
-  const double d = slabVoxels(scene) / std::sin(55.0 * M_PI / 180.0);
+  const double d = test::slabVoxels(scene) / std::sin(55.0 * M_PI / 180.0);
   const auto img = test::render(ShearWarpRenderer(), scene, *model);
   ASSERT_EQ(img.transmittanceChannels(), 81);
   const Eigen::VectorXd a = test::rendererLibrary().get("ColorChecker/cyan").values();

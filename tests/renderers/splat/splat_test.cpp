@@ -26,13 +26,6 @@ LightIndependentImage renderScene(const Scene& scene, const ColourModel& model,
 
 nlohmann::json splatOptions(const std::string& mode) { return {{"splat", {{"mode", mode}}}}; }
 
-double slabVoxels(const Scene& scene) {
-  const auto& d = scene.volume.dims();
-  double n = 0;
-  for (int z = 0; z < d[2]; ++z) n += scene.volume.value(d[0] / 2, d[1] / 2, z);
-  return n;
-}
-
 // The footprint's line integrals, summed over the pixels and converted to world area, give the
 // kernel's integral: the voxel's volume (the truncated Gaussian is renormalised).
 TEST(SplatFootprint, IntegratesToTheKernelIntegral) {
@@ -82,7 +75,7 @@ TEST(SplatFootprint, SheetSharesOfAKernelSumToOne) {
 TEST(Splat, SlabTransmittanceIsExpMinusSigmaD) {
   const auto model = makeSpectralModel(test::rendererObserver(), 4);
   const Scene scene = test::slabScene(0.05, "", 0.5);
-  const double expected = std::exp(-0.05 * slabVoxels(scene));
+  const double expected = std::exp(-0.05 * test::slabVoxels(scene));
   for (const std::string mode : {"sheet", "direct"}) {
     const auto img = renderScene(scene, *model, SplatRenderer(), splatOptions(mode));
     for (int y = 4; y < 28; y += 3)
@@ -94,7 +87,7 @@ TEST(Splat, SlabTransmittanceIsExpMinusSigmaD) {
 TEST(Splat, SpectralSlabTransmittancePerChannel) {
   const auto model = makeSpectralModel(test::rendererObserver(), 81);
   const Scene scene = test::slabScene(0.05, "ColorChecker/cyan", 0.5);
-  const double d = slabVoxels(scene);
+  const double d = test::slabVoxels(scene);
   const auto img = renderScene(scene, *model, SplatRenderer(), splatOptions("sheet"));
   ASSERT_EQ(img.transmittanceChannels(), 81);
   const Eigen::VectorXd a = test::rendererLibrary().get("ColorChecker/cyan").values();
