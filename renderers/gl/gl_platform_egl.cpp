@@ -57,8 +57,10 @@ std::vector<Device> enumerateDevices() {
   if (!hasExtension(client, "EGL_EXT_device_enumeration") ||
       !hasExtension(client, "EGL_EXT_platform_device"))
     throw Error(fmt::format("gl: EGL lacks device enumeration (EGL_EXT_device_enumeration, "
-                            "EGL_EXT_platform_device); its client extensions are '{}'",
-                            client ? client : "(none: is libegl-mesa0 installed?)"));
+                            "EGL_EXT_platform_device); its client extensions: {}",
+                            client && *client ? client
+                                              : "none: no EGL vendor library answered (is "
+                                                "libegl-mesa0 installed?)"));
   const auto query = reinterpret_cast<PFNEGLQUERYDEVICESEXTPROC>(
       eglGetProcAddress("eglQueryDevicesEXT"));
   const auto device_string = reinterpret_cast<PFNEGLQUERYDEVICESTRINGEXTPROC>(
