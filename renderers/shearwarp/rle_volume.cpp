@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "renderers/core/volume.h"
 #include "spectral/error.h"
 
 namespace svr::shearwarp {
@@ -14,17 +15,63 @@ std::size_t indexOf(const Dims& d, int x, int y, int z) {
   return (static_cast<std::size_t>(z) * d[1] + y) * d[0] + x;
 }
 
-// Central differences of the shading field at a voxel, with the raycaster's clamping at the
-// border, in world units: bilinear interpolation of these inside a slice equals the
-// raycaster's central difference of the trilinear field at the same point.
-void gradientAt(const ClassifiedVolume& cv, const int p[3], float g[3]) {
-  for (int a = 0; a < 3; ++a) {
-    int lo[3] = {p[0], p[1], p[2]}, hi[3] = {p[0], p[1], p[2]};
-    lo[a] = std::max(p[a] - 1, 0);
-    hi[a] = std::min(p[a] + 1, cv.dims[a] - 1);
-    const float f1 = cv.shadingField()[indexOf(cv.dims, hi[0], hi[1], hi[2])];
-    const float f0 = cv.shadingField()[indexOf(cv.dims, lo[0], lo[1], lo[2])];
-    g[a] = static_cast<float>((f1 - f0) * 0.5 / cv.spacing[a]);
+// A voxel row of one slice as strides into the volume: voxel i of the row is at
+// base + i · step_i; the neighbours along the three axes are ± stride[a].
+struct RowAddress {
+  std::size_t base;
+  std::ptrdiff_t step_i;
+};
+
+// The bins a voxel's value can blend (cellOccupied's floor and ceil, per voxel: the floor of a
+// cell's minimum is the minimum of its corners' floors, the ceiling of its maximum the maximum
+// of their ceilings), or for label maps whether the label is visible (lo = hi = 0 or 1 against
+// a prefix of [0, 0, 1]).
+struct BinRange {
+  std::int32_t lo, hi;
+};
+
+void rowBins(const ClassifiedVolume& cv, const RowAddress& row, int n, BinRange* out) {
+  if (cv.labels) {
+    for (int i = 0; i < n; ++i) {
+      const int visible = cv.alpha[cv.label[row.base + i * row.step_i]] > 0.f;
+      out[i] = {visible, visible};
+    }
+    return;
+  }
+  const int last = cv.entries - 1;
+  const double lo = cv.value_lo, scale = cv.value_scale, top = last;
+  for (int i = 0; i < n; ++i) {
+    // floor and ceil clamped to [0, last], by truncation (std::floor is a libm call on the
+    // baseline x86-64 target): the same integers for every bin.
+    const double bin = std::clamp((cv.values[row.base + i * row.step_i] - lo) * scale, 0.0, top);
+    const int down = static_cast<int>(bin);
+    out[i] = {down, down + (static_cast<double>(down) < bin ? 1 : 0)};
+  }
+}
+
+// The voxel records of voxels lo .. hi of a row: value (or label) and the central differences
+// of the shading field, clamped at the border as the raycaster's, in world units.
+void rowRecords(const ClassifiedVolume& cv, const int p0[3], int axis_i, int lo, int hi,
+                std::vector<VoxelRecord>& out) {
+  const Dims& d = cv.dims;
+  const std::size_t stride[3] = {1, static_cast<std::size_t>(d[0]),
+                                 static_cast<std::size_t>(d[0]) * d[1]};
+  const float* f = cv.shadingField().data();
+  const float half_inv[3] = {static_cast<float>(0.5 / cv.spacing.x),
+                             static_cast<float>(0.5 / cv.spacing.y),
+                             static_cast<float>(0.5 / cv.spacing.z)};
+  int p[3] = {p0[0], p0[1], p0[2]};
+  for (int i = lo; i <= hi; ++i) {
+    p[axis_i] = i;
+    const std::size_t index = p[0] * stride[0] + p[1] * stride[1] + p[2] * stride[2];
+    VoxelRecord rec;
+    rec.value = cv.labels ? static_cast<float>(cv.label[index]) : cv.values[index];
+    for (int a = 0; a < 3; ++a) {
+      const std::size_t down = p[a] > 0 ? stride[a] : 0;
+      const std::size_t up = p[a] + 1 < d[a] ? stride[a] : 0;
+      rec.gradient[a] = (f[index + up] - f[index - down]) * half_inv[a];
+    }
+    out.push_back(rec);
   }
 }
 
@@ -74,51 +121,65 @@ AxisEncoding::AxisEncoding(const ClassifiedVolume& cv, int axis)
     throw Error(fmt::format("shearwarp: a {}×{}×{} volume is too thin to shear (at least 2 "
                             "voxels along each axis)",
                             cv.dims[0], cv.dims[1], cv.dims[2]));
-  const std::vector<int> prefix = nonzeroOpacityPrefix(cv);
+  // Label maps classify each corner alone: a cell is occupied when any corner's label is
+  // visible, a prefix over the two "bins" 0 (hidden) and 1 (visible).
+  const std::vector<int> prefix = cv.labels ? std::vector<int>{0, 0, 1} : nonzeroOpacityPrefix(cv);
+  const std::size_t stride[3] = {1, static_cast<std::size_t>(cv.dims[0]),
+                                 static_cast<std::size_t>(cv.dims[0]) * cv.dims[1]};
   slices_.resize(n_k_);
-#pragma omp parallel for schedule(dynamic)
-  for (int k = 0; k < n_k_; ++k) {
-    SliceEncoding& s = slices_[k];
-    s.run_offsets.assign(n_j_, 0);
-    int p[3];
-    p[axis_] = k;
-    for (int j = 0; j + 1 < n_j_; ++j) {
-      s.run_offsets[j] = static_cast<std::int32_t>(s.runs.size());
-      p[axis_j_] = j;
-      bool open = false;
-      for (int i = 0; i + 1 < n_i_; ++i) {
-        p[axis_i_] = i;
-        const bool occupied = cellOccupied(cv, prefix, p[0], p[1], p[2], axis_i_, axis_j_);
-        if (occupied && !open) s.runs.push_back({i, i + 1});
-        if (occupied) s.runs.back().end = i + 1;
-        open = occupied;
+  const bool parallel =
+      static_cast<std::int64_t>(n_i_) * n_j_ * n_k_ >= kParallelVoxels;
+#pragma omp parallel if (parallel)
+  {
+    std::vector<BinRange> below(n_i_), above(n_i_);
+    std::vector<std::uint8_t> occupied(n_i_);
+#pragma omp for schedule(dynamic)
+    for (int k = 0; k < n_k_; ++k) {
+      SliceEncoding& s = slices_[k];
+      s.run_offsets.assign(n_j_, 0);
+      const auto rowOf = [&](int j) {
+        return RowAddress{k * stride[axis_] + j * stride[axis_j_],
+                          static_cast<std::ptrdiff_t>(stride[axis_i_])};
+      };
+      rowBins(cv, rowOf(0), n_i_, below.data());
+      for (int j = 0; j + 1 < n_j_; ++j) {
+        s.run_offsets[j] = static_cast<std::int32_t>(s.runs.size());
+        rowBins(cv, rowOf(j + 1), n_i_, above.data());
+        // Cell i spans voxels i, i + 1 of rows j, j + 1: the range of their bins.
+        for (int i = 0; i + 1 < n_i_; ++i) {
+          const int b0 = std::min({below[i].lo, below[i + 1].lo, above[i].lo, above[i + 1].lo});
+          const int b1 = std::max({below[i].hi, below[i + 1].hi, above[i].hi, above[i + 1].hi});
+          occupied[i] = prefix[b1 + 1] - prefix[b0] > 0;
+        }
+        for (int i = 0; i + 1 < n_i_; ++i) {
+          if (!occupied[i]) continue;
+          const int begin = i;
+          while (i + 1 < n_i_ && occupied[i]) ++i;
+          s.runs.push_back({begin, i});
+        }
+        std::swap(below, above);
       }
-    }
-    s.run_offsets[n_j_ - 1] = static_cast<std::int32_t>(s.runs.size());
-    // Voxel row j is touched by the cells of cell rows j − 1 and j.
-    s.rows.resize(n_j_);
-    for (int j = 0; j < n_j_; ++j) {
-      int lo = n_i_, hi = -1;
-      for (int cj = std::max(j - 1, 0); cj <= std::min(j, n_j_ - 2); ++cj) {
-        const auto first = s.runs.begin() + s.run_offsets[cj];
-        const auto last = s.runs.begin() + s.run_offsets[cj + 1];
-        if (first == last) continue;
-        lo = std::min(lo, first->begin);
-        hi = std::max(hi, (last - 1)->end);  // cell end − 1 + its right voxel
-      }
-      RowSpan& r = s.rows[j];
-      r.offset = s.records.size();
-      if (hi < lo) continue;
-      r.lo = lo;
-      r.count = hi - lo + 1;
-      p[axis_j_] = j;
-      for (int i = lo; i <= hi; ++i) {
-        p[axis_i_] = i;
-        VoxelRecord rec;
-        const std::size_t index = indexOf(cv.dims, p[0], p[1], p[2]);
-        rec.value = cv.labels ? static_cast<float>(cv.label[index]) : cv.values[index];
-        gradientAt(cv, p, rec.gradient);
-        s.records.push_back(rec);
+      s.run_offsets[n_j_ - 1] = static_cast<std::int32_t>(s.runs.size());
+      // Voxel row j is touched by the cells of cell rows j − 1 and j.
+      s.rows.resize(n_j_);
+      int p[3];
+      p[axis_] = k;
+      for (int j = 0; j < n_j_; ++j) {
+        int lo = n_i_, hi = -1;
+        for (int cj = std::max(j - 1, 0); cj <= std::min(j, n_j_ - 2); ++cj) {
+          const auto first = s.runs.begin() + s.run_offsets[cj];
+          const auto last = s.runs.begin() + s.run_offsets[cj + 1];
+          if (first == last) continue;
+          lo = std::min(lo, first->begin);
+          hi = std::max(hi, (last - 1)->end);  // cell end − 1 + its right voxel
+        }
+        RowSpan& r = s.rows[j];
+        r.offset = s.records.size();
+        if (hi < lo) continue;
+        r.lo = lo;
+        r.count = hi - lo + 1;
+        p[axis_j_] = j;
+        rowRecords(cv, p, axis_i_, lo, hi, s.records);
       }
     }
   }
