@@ -51,8 +51,8 @@ void rowBins(const ClassifiedVolume& cv, const RowAddress& row, int n, BinRange*
 
 // The voxel records of voxels lo .. hi of a row: value (or label) and the central differences
 // of the shading field, clamped at the border as the raycaster's, in world units.
-void rowRecords(const ClassifiedVolume& cv, const int p0[3], int axis_i, int lo, int hi,
-                std::vector<VoxelRecord>& out) {
+void appendRowRecords(const ClassifiedVolume& cv, const int p0[3], int axis_i, int lo, int hi,
+                      std::vector<VoxelRecord>& out) {
   const Dims& d = cv.dims;
   const std::size_t stride[3] = {1, static_cast<std::size_t>(d[0]),
                                  static_cast<std::size_t>(d[0]) * d[1]};
@@ -179,7 +179,7 @@ AxisEncoding::AxisEncoding(const ClassifiedVolume& cv, int axis)
         r.lo = lo;
         r.count = hi - lo + 1;
         p[axis_j_] = j;
-        rowRecords(cv, p, axis_i_, lo, hi, s.records);
+        appendRowRecords(cv, p, axis_i_, lo, hi, s.records);
       }
     }
   }

@@ -69,6 +69,13 @@ class AxisEncoding {
     const RowSpan& r = s.rows[j];
     return s.records[r.offset + (i - r.lo)];
   }
+  // Row j's records indexed by voxel i, valid for lo ≤ i < lo + count: voxel(k, j, i) is
+  // rowRecords(k, j)[i] (a pointer offset by −lo, set up once per row instead of per sample).
+  const VoxelRecord* rowRecords(int k, int j) const {
+    const SliceEncoding& s = slices_[k];
+    const RowSpan& r = s.rows[j];
+    return s.records.data() + static_cast<std::ptrdiff_t>(r.offset) - r.lo;
+  }
   std::size_t bytes() const;
   std::size_t storedVoxels() const;
 

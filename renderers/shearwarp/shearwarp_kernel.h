@@ -1,10 +1,12 @@
 #pragma once
 // The compositing inner loop of shear-warp: one intermediate scanline through every slice,
 // front to back, templated on the channel count K (0 = dynamic) and on spectral (k-channel) or
-// scalar transmittance. Per sample it does exactly what raycast_kernel.h does (classify the
+// scalar transmittance. Per sample it does what raycast_kernel.h does (classify the
 // interpolated value, or interpolate the classified labels; Phong with the interpolated
-// gradient; S += T ⊙ α(ρ·shade + white·spec·highlight); T ⊙= t), with the tables corrected for
-// the slice spacing. Included only by shearwarp_renderer.cpp.
+// gradient; S += T ⊙ α(ρ·shade + white·spec·highlight); T ⊙= t), with the entries corrected
+// for the slice spacing and laid out as the raycaster's sample table (SliceTable: α, α·s, α·ρ,
+// t per entry, so the opacity-weighted blend needs no division). Included only by
+// shearwarp_renderer.cpp.
 //
 // Skipping: only the runs of non-transparent cells are visited (rle_volume.h), and pixels that
 // became opaque are jumped over through links in the scanline (Lacroute & Levoy §4.2): links[u]
@@ -24,18 +26,43 @@ namespace svr::shearwarp {
 
 inline constexpr int kMaxChannels = 128;
 
+// Per entry, for the slice spacing: [α, α·specular, α·ρ_0 … α·ρ_{k−1}, t_0 … t_{kt−1}], rows
+// padded to a multiple of 4 floats (raycast/sample_table.h's layout for this backend's own
+// opacity correction).
+struct SliceTable {
+  static constexpr int strideFor(int width) { return (width + 3) / 4 * 4; }
+  int stride = 0;
+  std::vector<float> rows;
+  // alpha, transmission: the classification's entries corrected for the slice spacing.
+  SliceTable(const ClassifiedVolume& cv, const std::vector<float>& alpha,
+             const std::vector<float>& transmission)
+      : stride(strideFor(2 + cv.k + cv.t_channels)) {
+    const int k = cv.k, kt = cv.t_channels;
+    rows.assign(static_cast<std::size_t>(cv.entries) * stride, 0.f);
+    for (int e = 0; e < cv.entries; ++e) {
+      float* row = &rows[static_cast<std::size_t>(e) * stride];
+      row[0] = alpha[e];
+      row[1] = alpha[e] * cv.specular[e];
+      for (int c = 0; c < k; ++c)
+        row[2 + c] = alpha[e] * cv.reflectance[static_cast<std::size_t>(e) * k + c];
+      for (int c = 0; c < kt; ++c)
+        row[2 + k + c] = transmission[static_cast<std::size_t>(e) * kt + c];
+    }
+  }
+  const float* row(int e) const { return rows.data() + static_cast<std::size_t>(e) * stride; }
+};
+
 struct CompositeJob {
   const ClassifiedVolume* volume;
   const AxisEncoding* encoding;
   const ShearWarpFactorization* view;
-  const float* alpha;         // entries: opacity for the slice spacing
-  const float* transmission;  // entries × t_channels: transmission for the slice spacing
+  const SliceTable* table;
   float threshold;
   PhongSetup phong;  // light and half vectors are unit, world
   IntermediateImage* image;
 };
 
-inline int nextLive(std::vector<int>& links, int u) {
+inline int nextLive(int* links, int u) {
   int root = u;
   while (links[root] != root) root = links[root];
   while (links[u] != root) {
@@ -60,82 +87,119 @@ inline int firstPixel(double target, double base, double inv_scale, int scale, b
   return u;
 }
 
+// The sample's blended table row: the two bins around a scalar value, or the four corners'
+// labels weighted bilinearly.
+template <int kStride>
+[[gnu::always_inline]] inline void blendRow(const ClassifiedVolume& cv, const SliceTable& table,
+                                            const VoxelRecord* const c[4], const float w[4],
+                                            int width_, float* acc) {
+  const int width = kStride > 0 ? kStride : width_;
+  if (cv.labels) {
+    for (int j = 0; j < width; ++j) acc[j] = 0.f;
+    for (int n = 0; n < 4; ++n) {
+      const float* r = table.row(static_cast<int>(c[n]->value));
+      for (int j = 0; j < width; ++j) acc[j] += w[n] * r[j];
+    }
+    return;
+  }
+  const float value = w[0] * c[0]->value + w[1] * c[1]->value + w[2] * c[2]->value +
+                      w[3] * c[3]->value;
+  int e0, e1;
+  float frac;
+  binOf(cv, value, e0, e1, frac);
+  const float* r0 = table.row(e0);
+  const float* r1 = table.row(e1);
+  for (int j = 0; j < width; ++j) acc[j] = r0[j] + frac * (r1[j] - r0[j]);
+}
+
+// One slice's samples on intermediate scanline v (whose opaque pixels `links` skips).
 template <int K, bool kSpectralT>
-void compositeScanline(const CompositeJob& job, int v, std::vector<int>& links) {
+[[gnu::always_inline]] inline void compositeSlice(const CompositeJob& job, int v, int slice,
+                                                  int* links) {
   const ClassifiedVolume& cv = *job.volume;
   const AxisEncoding& enc = *job.encoding;
   const ShearWarpFactorization& f = *job.view;
+  const SliceTable& table = *job.table;
   IntermediateImage& im = *job.image;
   const int k = K > 0 ? K : cv.k;
-  constexpr int kCap = K > 0 ? K : kMaxChannels;
   const int kt = kSpectralT ? k : 1;
+  constexpr int kStride = K > 0 ? SliceTable::strideFor(2 + K + (kSpectralT ? K : 1)) : 0;
+  constexpr int kWidthCap = SliceTable::strideFor(2 + kMaxChannels + kMaxChannels);
   const int width = im.width;
-  const int n_i = enc.rowLength(), n_j = enc.rowCount(), n_k = enc.slices();
+  const int n_i = enc.rowLength(), n_j = enc.rowCount();
   const double inv_scale = 1.0 / f.scale;
-
-  links.resize(width + 1);
-  for (int u = 0; u <= width; ++u) links[u] = u;
+  const float* white = cv.white.data();
   float* row = im.pixel(0, v);
   const int stride = im.channels();
 
-  for (int step = 0; step < n_k; ++step) {
-    const int slice = f.increasing ? step : n_k - 1 - step;
-    const double qj = v * inv_scale + f.offset_j + f.shear_j * slice;
-    if (!(qj >= 0.0 && qj <= n_j - 1)) continue;
-    const int j0 = std::min(static_cast<int>(qj), n_j - 2);
-    const float fj = static_cast<float>(qj - j0);
-    const double base_i = f.offset_i + f.shear_i * slice;
-    for (const CellRun& run : enc.runs(slice, j0)) {
-      const int u_begin = std::max(firstPixel(run.begin, base_i, inv_scale, f.scale, false), 0);
-      // The last cell of a row also holds the samples exactly on the row's last voxel.
-      const int u_end =
-          std::min(firstPixel(run.end, base_i, inv_scale, f.scale, run.end == n_i - 1), width);
-      for (int u = nextLive(links, u_begin); u < u_end; u = nextLive(links, u + 1)) {
-        const double qi = u * inv_scale + base_i;
-        const int i0 = std::clamp(static_cast<int>(std::floor(qi)), run.begin, run.end - 1);
-        const float fi = std::clamp(static_cast<float>(qi - i0), 0.f, 1.f);
-        const VoxelRecord* c[4] = {
-            &enc.voxel(slice, j0, i0), &enc.voxel(slice, j0, i0 + 1),
-            &enc.voxel(slice, j0 + 1, i0), &enc.voxel(slice, j0 + 1, i0 + 1)};
-        const float w[4] = {(1 - fi) * (1 - fj), fi * (1 - fj), (1 - fi) * fj, fi * fj};
-
-        float alpha, spec_w, refl[kCap], trans[kSpectralT ? kCap : 1];
-        if (cv.labels) {
-          int entry[4];
-          for (int n = 0; n < 4; ++n) entry[n] = static_cast<int>(c[n]->value);
-          blendEntries(cv, job.alpha, job.transmission, entry, w, 4, k, kt, alpha, spec_w, refl,
-                       trans);
-        } else {
-          float value = 0.f;
-          for (int n = 0; n < 4; ++n) value += w[n] * c[n]->value;
-          int entry[2];
-          float frac;
-          binOf(cv, value, entry[0], entry[1], frac);
-          const float wb[2] = {1.f - frac, frac};
-          blendEntries(cv, job.alpha, job.transmission, entry, wb, 2, k, kt, alpha, spec_w, refl,
-                       trans);
-        }
-        float* px = row + static_cast<std::size_t>(u) * stride;
-        float* S = px;
-        float* T = px + k;
-        if (alpha > 0.f) {
-          float g[3] = {0.f, 0.f, 0.f};
-          for (int n = 0; n < 4; ++n)
-            for (int a = 0; a < 3; ++a) g[a] += w[n] * c[n]->gradient[a];
-          const auto [shade, highlight] = phong(job.phong, g);
-          const float hs = highlight * spec_w;
-          for (int ch = 0; ch < k; ++ch)
-            S[ch] += T[kSpectralT ? ch : 0] * alpha * (refl[ch] * shade + cv.white[ch] * hs);
-        }
-        float tmax = 0.f;
-        for (int ch = 0; ch < kt; ++ch) {
-          T[ch] *= trans[ch];
-          tmax = std::max(tmax, T[ch]);
-        }
-        if (tmax < job.threshold) links[u] = u + 1;  // opaque: skip it from now on
+  const double qj = v * inv_scale + f.offset_j + f.shear_j * slice;
+  if (!(qj >= 0.0 && qj <= n_j - 1)) return;
+  const int j0 = std::min(static_cast<int>(qj), n_j - 2);
+  const float fj = static_cast<float>(qj - j0);
+  const double base_i = f.offset_i + f.shear_i * slice;
+  // Voxel i of rows j0 and j0 + 1, for the i the cell runs touch.
+  const VoxelRecord* rec0 = enc.rowRecords(slice, j0);
+  const VoxelRecord* rec1 = enc.rowRecords(slice, j0 + 1);
+  for (const CellRun& run : enc.runs(slice, j0)) {
+    const int u_begin = std::max(firstPixel(run.begin, base_i, inv_scale, f.scale, false), 0);
+    // The last cell of a row also holds the samples exactly on the row's last voxel.
+    const int u_end =
+        std::min(firstPixel(run.end, base_i, inv_scale, f.scale, run.end == n_i - 1), width);
+    for (int u = nextLive(links, u_begin); u < u_end; u = nextLive(links, u + 1)) {
+      const double qi = u * inv_scale + base_i;
+      const int i0 = std::clamp(static_cast<int>(qi), run.begin, run.end - 1);
+      const float fi = std::clamp(static_cast<float>(qi - i0), 0.f, 1.f);
+      const VoxelRecord* const c[4] = {rec0 + i0, rec0 + i0 + 1, rec1 + i0, rec1 + i0 + 1};
+      const float w[4] = {(1 - fi) * (1 - fj), fi * (1 - fj), (1 - fi) * fj, fi * fj};
+      alignas(16) float acc[K > 0 ? kStride : kWidthCap];
+      blendRow<kStride>(cv, table, c, w, table.stride, acc);
+      float* px = row + static_cast<std::size_t>(u) * stride;
+      float* S = px;
+      float* T = px + k;
+      if (acc[0] > 0.f) {  // α
+        float g[3];
+        for (int a = 0; a < 3; ++a)
+          g[a] = w[0] * c[0]->gradient[a] + w[1] * c[1]->gradient[a] +
+                 w[2] * c[2]->gradient[a] + w[3] * c[3]->gradient[a];
+        const auto [shade, highlight] = phong(job.phong, g);
+        const float hs = highlight * acc[1];
+        for (int ch = 0; ch < k; ++ch)
+          S[ch] += T[kSpectralT ? ch : 0] * (acc[2 + ch] * shade + white[ch] * hs);
       }
+      float tmax = 0.f;
+      for (int ch = 0; ch < kt; ++ch) {
+        T[ch] *= acc[2 + k + ch];
+        tmax = std::max(tmax, T[ch]);
+      }
+      if (tmax < job.threshold) links[u] = u + 1;  // opaque: skip it from now on
     }
-    if (nextLive(links, 0) >= width) break;  // the whole scanline is opaque
+  }
+}
+
+// Intermediate scanlines [v0, v1) through every slice, front to back. Slice by slice over the
+// band (not scanline by scanline through all slices): a slice's rows for neighbouring scanlines
+// are neighbours in memory, so the records stream in order; scanline-major order jumped
+// between all slices' records from one sample to the next, and a sixth of the compositing time
+// was the first load of a voxel record. A band's scanlines only ever receive their own rays,
+// so bands composite independently: no barrier per slice.
+template <int K, bool kSpectralT>
+void compositeBand(const CompositeJob& job, int v0, int v1, std::vector<int>& links) {
+  const int width = job.image->width;
+  const int n_k = job.encoding->slices();
+  const int lines = v1 - v0;
+  links.resize(static_cast<std::size_t>(lines) * (width + 1));
+  for (int l = 0; l < lines; ++l)
+    for (int u = 0; u <= width; ++u) links[static_cast<std::size_t>(l) * (width + 1) + u] = u;
+  int live_lines = lines;
+  for (int step = 0; step < n_k && live_lines > 0; ++step) {
+    const int slice = job.view->increasing ? step : n_k - 1 - step;
+    live_lines = 0;
+    for (int l = 0; l < lines; ++l) {
+      int* line = links.data() + static_cast<std::size_t>(l) * (width + 1);
+      if (nextLive(line, 0) >= width) continue;  // the whole scanline is opaque
+      compositeSlice<K, kSpectralT>(job, v0 + l, slice, line);
+      ++live_lines;
+    }
   }
 }
 

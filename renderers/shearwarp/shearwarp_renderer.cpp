@@ -18,12 +18,12 @@
 namespace svr {
 namespace {
 
-using ScanlineFn = void (*)(const shearwarp::CompositeJob&, int, std::vector<int>&);
+using BandFn = void (*)(const shearwarp::CompositeJob&, int, int, std::vector<int>&);
 
 template <bool kSpectralT>
-ScanlineFn pickKernel(int k) {
-  return pickWidth(k, false, []<int N>() -> ScanlineFn {
-    return &shearwarp::compositeScanline<N, kSpectralT>;
+BandFn pickKernel(int k) {
+  return pickWidth(k, false, []<int N>() -> BandFn {
+    return &shearwarp::compositeBand<N, kSpectralT>;
   });
 }
 
@@ -78,24 +78,26 @@ LightIndependentImage ShearWarpRenderer::renderImpl(const RenderRequest& req,
   const glm::dvec3 half = glm::normalize(light + view_dir);
 
   shearwarp::IntermediateImage intermediate(view.width, view.height, cv.k, cv.t_channels);
+  const shearwarp::SliceTable table(cv, alpha, transmission);
   shearwarp::CompositeJob job{&cv,
                               &encoding,
                               &view,
-                              alpha.data(),
-                              transmission.data(),
+                              &table,
                               static_cast<float>(req.termination),
                               PhongSetup(req.shading, light, half),
                               &intermediate};
-  const ScanlineFn fn = cv.t_channels > 1 ? pickKernel<true>(cv.k) : pickKernel<false>(cv.k);
-  progress.stage(view.height, 0.0, 0.95);
-  // Each intermediate scanline only ever receives its own rays, so scanlines composite
-  // independently through all slices: no barrier per slice.
+  const BandFn fn = cv.t_channels > 1 ? pickKernel<true>(cv.k) : pickKernel<false>(cv.k);
+  // Bands of kBand scanlines (compositeBand); dynamic over bands, as opaque regions end some
+  // bands early.
+  constexpr int kBand = 16;
+  const int bands = (view.height + kBand - 1) / kBand;
+  progress.stage(bands, 0.0, 0.95);
 #pragma omp parallel
   {
     std::vector<int> links;
-#pragma omp for schedule(dynamic, 4)
-    for (int v = 0; v < view.height; ++v) {
-      fn(job, v, links);
+#pragma omp for schedule(dynamic)
+    for (int b = 0; b < bands; ++b) {
+      fn(job, b * kBand, std::min((b + 1) * kBand, view.height), links);
       progress.advance();
     }
   }
