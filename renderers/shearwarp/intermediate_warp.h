@@ -12,6 +12,8 @@ namespace svr::shearwarp {
 
 struct IntermediateImage {
   IntermediateImage(int width, int height, int s_channels, int t_channels);
+  // Empty again at this size, reusing the storage (no fresh pages to fault in and zero).
+  void reset(int width, int height, int s_channels, int t_channels);
   int width, height, s_channels, t_channels;
   int channels() const { return s_channels + t_channels; }
   float* pixel(int u, int v) {

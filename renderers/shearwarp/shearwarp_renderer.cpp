@@ -77,7 +77,20 @@ LightIndependentImage ShearWarpRenderer::renderImpl(const RenderRequest& req,
   const glm::dvec3 light = req.light_direction ? glm::normalize(*req.light_direction) : view_dir;
   const glm::dvec3 half = glm::normalize(light + view_dir);
 
-  shearwarp::IntermediateImage intermediate(view.width, view.height, cv.k, cv.t_channels);
+  std::unique_ptr<shearwarp::IntermediateImage> pooled;
+  {
+    const std::lock_guard lock(pool_mutex_);
+    if (!pool_.empty()) {
+      pooled = std::move(pool_.back());
+      pool_.pop_back();
+    }
+  }
+  if (pooled)
+    pooled->reset(view.width, view.height, cv.k, cv.t_channels);
+  else
+    pooled = std::make_unique<shearwarp::IntermediateImage>(view.width, view.height, cv.k,
+                                                            cv.t_channels);
+  shearwarp::IntermediateImage& intermediate = *pooled;
   const shearwarp::SliceTable table(cv, alpha, transmission);
   shearwarp::CompositeJob job{&cv,
                               &encoding,
@@ -104,8 +117,13 @@ LightIndependentImage ShearWarpRenderer::renderImpl(const RenderRequest& req,
 
   LightIndependentImage image(req.width, req.height, cv.k, cv.t_channels);
   shearwarp::warpToFinal(intermediate, view, image);
+  const std::lock_guard lock(pool_mutex_);
+  pool_.push_back(std::move(pooled));
   return image;
 }
+
+ShearWarpRenderer::ShearWarpRenderer() = default;
+ShearWarpRenderer::~ShearWarpRenderer() = default;
 
 namespace backends {
 BackendEntry shearwarp() {

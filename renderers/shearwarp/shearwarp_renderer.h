@@ -16,9 +16,16 @@
 // only (bilinear in a slice, none between slices), the sample spacing grows towards 45°, the
 // principal axis switches (and the image pops) at 45°, and zooming in blurs.
 
+#include <memory>
+#include <mutex>
+#include <vector>
+
 #include "renderers/core/renderer.h"
 
 namespace svr {
+namespace shearwarp {
+struct IntermediateImage;
+}
 
 class ShearWarpRenderer final : public Renderer {
  public:
@@ -30,6 +37,17 @@ class ShearWarpRenderer final : public Renderer {
                              const BackendOptions& options) const override;
   LightIndependentImage renderImpl(const RenderRequest& request, const BackendOptions& options,
                                    ProgressCounter& progress) const override;
+
+ public:
+  ShearWarpRenderer();
+  ~ShearWarpRenderer() override;
+
+ private:
+  // Intermediate images of finished frames, reused by the next ones (allocating and zeroing a
+  // fresh one cost about 16 ns per output pixel, some 10 of 37 ms at 800²). One per render
+  // running at a time on this instance.
+  mutable std::mutex pool_mutex_;
+  mutable std::vector<std::unique_ptr<shearwarp::IntermediateImage>> pool_;
 };
 
 }  // namespace svr
