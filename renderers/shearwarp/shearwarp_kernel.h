@@ -19,6 +19,7 @@
 #include "renderers/core/classification.h"
 #include "renderers/core/classified_sample.h"
 #include "renderers/shearwarp/intermediate_warp.h"
+#include "renderers/shearwarp/preclassified_axis.h"
 #include "renderers/shearwarp/rle_volume.h"
 #include "renderers/shearwarp/shear_warp_factorization.h"
 
@@ -60,6 +61,12 @@ struct CompositeJob {
   float threshold;
   PhongSetup phong;  // light and half vectors are unit, world
   IntermediateImage* image;
+  // Pre-classified mode only (preclassified_axis.h): the classified records, the view's shading
+  // table and the slice-spacing corrections x ↦ x^r of 1 − α and of t.
+  const PreclassifiedAxis* pre = nullptr;
+  const ShadingTable* shading = nullptr;
+  const PowerTable* opacity_power = nullptr;
+  const PowerTable* transmission_power = nullptr;
 };
 
 inline int nextLive(int* links, int u) {
@@ -176,13 +183,87 @@ template <int K, bool kSpectralT>
   }
 }
 
+// compositeSlice for shearwarp.classification=pre: the four corners' classified records
+// blended bilinearly, each shaded from the view's table by its normal index; the interpolated
+// α and t corrected for the slice spacing.
+template <int K, bool kSpectralT>
+[[gnu::always_inline]] inline void compositeSlicePre(const CompositeJob& job, int v, int slice,
+                                                     int* links) {
+  const ClassifiedVolume& cv = *job.volume;
+  const AxisEncoding& enc = *job.encoding;
+  const PreclassifiedAxis& pre = *job.pre;
+  const ShearWarpFactorization& f = *job.view;
+  IntermediateImage& im = *job.image;
+  const int k = K > 0 ? K : cv.k;
+  const int kt = kSpectralT ? k : 1;
+  const int width = im.width;
+  const int n_i = enc.rowLength(), n_j = enc.rowCount();
+  const double inv_scale = 1.0 / f.scale;
+  const float* white = cv.white.data();
+  const float* shade_of = job.shading->shade.data();
+  const float* highlight_of = job.shading->highlight.data();
+  const int rs = pre.stride();
+  float* row = im.pixel(0, v);
+  const int stride = im.channels();
+
+  const double qj = v * inv_scale + f.offset_j + f.shear_j * slice;
+  if (!(qj >= 0.0 && qj <= n_j - 1)) return;
+  const int j0 = std::min(static_cast<int>(qj), n_j - 2);
+  const float fj = static_cast<float>(qj - j0);
+  const double base_i = f.offset_i + f.shear_i * slice;
+  const float* rec0 = pre.rowRecords(slice, j0);
+  const float* rec1 = pre.rowRecords(slice, j0 + 1);
+  const std::uint16_t* nrm0 = pre.rowNormals(slice, j0);
+  const std::uint16_t* nrm1 = pre.rowNormals(slice, j0 + 1);
+  for (const CellRun& run : enc.runs(slice, j0)) {
+    const int u_begin = std::max(firstPixel(run.begin, base_i, inv_scale, f.scale, false), 0);
+    const int u_end =
+        std::min(firstPixel(run.end, base_i, inv_scale, f.scale, run.end == n_i - 1), width);
+    for (int u = nextLive(links, u_begin); u < u_end; u = nextLive(links, u + 1)) {
+      const double qi = u * inv_scale + base_i;
+      const int i0 = std::clamp(static_cast<int>(qi), run.begin, run.end - 1);
+      const float fi = std::clamp(static_cast<float>(qi - i0), 0.f, 1.f);
+      const float* c[4] = {rec0 + i0 * rs, rec0 + (i0 + 1) * rs, rec1 + i0 * rs,
+                           rec1 + (i0 + 1) * rs};
+      const std::uint16_t nidx[4] = {nrm0[i0], nrm0[i0 + 1], nrm1[i0], nrm1[i0 + 1]};
+      const float w[4] = {(1 - fi) * (1 - fj), fi * (1 - fj), (1 - fi) * fj, fi * fj};
+      float* px = row + static_cast<std::size_t>(u) * stride;
+      float* S = px;
+      float* T = px + k;
+      const float a = w[0] * c[0][0] + w[1] * c[1][0] + w[2] * c[2][0] + w[3] * c[3][0];
+      if (a > 0.f) {
+        // S += T ⊙ (α'/α) Σ w (α·ρ · shade + α·s · highlight · white).
+        const float corrected = 1.f - (*job.opacity_power)(1.f - a);
+        const float scale = corrected / a;
+        float ws[4], wh = 0.f;
+        for (int n = 0; n < 4; ++n) {
+          ws[n] = scale * w[n] * shade_of[nidx[n]];
+          wh += scale * w[n] * c[n][1] * highlight_of[nidx[n]];
+        }
+        for (int ch = 0; ch < k; ++ch)
+          S[ch] += T[kSpectralT ? ch : 0] *
+                   (ws[0] * c[0][2 + ch] + ws[1] * c[1][2 + ch] + ws[2] * c[2][2 + ch] +
+                    ws[3] * c[3][2 + ch] + wh * white[ch]);
+      }
+      float tmax = 0.f;
+      for (int ch = 0; ch < kt; ++ch) {
+        const int o = 2 + k + ch;
+        T[ch] *= (*job.transmission_power)(w[0] * c[0][o] + w[1] * c[1][o] + w[2] * c[2][o] +
+                                           w[3] * c[3][o]);
+        tmax = std::max(tmax, T[ch]);
+      }
+      if (tmax < job.threshold) links[u] = u + 1;
+    }
+  }
+}
+
 // Intermediate scanlines [v0, v1) through every slice, front to back. Slice by slice over the
 // band (not scanline by scanline through all slices): a slice's rows for neighbouring scanlines
 // are neighbours in memory, so the records stream in order; scanline-major order jumped
 // between all slices' records from one sample to the next, and a sixth of the compositing time
 // was the first load of a voxel record. A band's scanlines only ever receive their own rays,
 // so bands composite independently: no barrier per slice.
-template <int K, bool kSpectralT>
+template <int K, bool kSpectralT, bool kPre>
 void compositeBand(const CompositeJob& job, int v0, int v1, std::vector<int>& links) {
   const int width = job.image->width;
   const int n_k = job.encoding->slices();
@@ -197,7 +278,10 @@ void compositeBand(const CompositeJob& job, int v0, int v1, std::vector<int>& li
     for (int l = 0; l < lines; ++l) {
       int* line = links.data() + static_cast<std::size_t>(l) * (width + 1);
       if (nextLive(line, 0) >= width) continue;  // the whole scanline is opaque
-      compositeSlice<K, kSpectralT>(job, v0 + l, slice, line);
+      if constexpr (kPre)
+        compositeSlicePre<K, kSpectralT>(job, v0 + l, slice, line);
+      else
+        compositeSlice<K, kSpectralT>(job, v0 + l, slice, line);
       ++live_lines;
     }
   }

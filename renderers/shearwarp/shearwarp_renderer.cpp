@@ -4,6 +4,8 @@
 #include <omp.h>
 
 #include <atomic>
+#include <optional>
+#include <utility>
 #include <cmath>
 #include <glm/geometric.hpp>
 
@@ -20,11 +22,23 @@ namespace {
 
 using BandFn = void (*)(const shearwarp::CompositeJob&, int, int, std::vector<int>&);
 
-template <bool kSpectralT>
-BandFn pickKernel(int k) {
+template <bool kSpectralT, bool kPre>
+BandFn pickFor(int k) {
   return pickWidth(k, false, []<int N>() -> BandFn {
-    return &shearwarp::compositeBand<N, kSpectralT>;
+    return &shearwarp::compositeBand<N, kSpectralT, kPre>;
   });
+}
+
+BandFn pickKernel(int k, bool spectral_t, bool pre) {
+  if (spectral_t) return pre ? pickFor<true, true>(k) : pickFor<true, false>(k);
+  return pre ? pickFor<false, true>(k) : pickFor<false, false>(k);
+}
+
+// The range of the transmission coefficients (factor models may leave [0, 1]) and 1.
+std::pair<float, float> transmissionRange(const ClassifiedVolume& cv) {
+  float lo = 1.f, hi = 1.f;
+  for (float t : cv.transmission) lo = std::min(lo, t), hi = std::max(hi, t);
+  return {std::min(lo, 0.f), hi};
 }
 
 // Sign-preserving power: factor-model transmission coefficients may dip slightly below zero,
@@ -42,7 +56,12 @@ const BackendInfo& ShearWarpRenderer::info() const {
        .max_channels = shearwarp::kMaxChannels},
       {OptionSpec::integer("supersample", 1, 1, 4,
                            "intermediate pixels per voxel along each slice axis: less blur "
-                           "under zoom, for time")}};
+                           "under zoom, for time"),
+       OptionSpec::choice("classification", {"post", "pre"},
+                          "post: classify and shade each sample's interpolated value; pre: "
+                          "classify and quantise normals at the voxels, interpolate the "
+                          "classified voxels and shade from a table per view (VolPack's method: "
+                          "faster, less accurate at material edges)")}};
   return info;
 }
 
@@ -99,7 +118,22 @@ LightIndependentImage ShearWarpRenderer::renderImpl(const RenderRequest& req,
                               static_cast<float>(req.termination),
                               PhongSetup(req.shading, light, half),
                               &intermediate};
-  const BandFn fn = cv.t_channels > 1 ? pickKernel<true>(cv.k) : pickKernel<false>(cv.k);
+  const bool pre = options.choice("classification") == "pre";
+  std::shared_ptr<const shearwarp::PreclassifiedAxis> preclassified;
+  std::optional<shearwarp::ShadingTable> shading;
+  std::optional<shearwarp::PowerTable> opacity_power, transmission_power;
+  if (pre) {
+    preclassified = shearwarp::PreclassifiedAxis::of(cv, view.axis);
+    shading.emplace(job.phong);
+    opacity_power.emplace(0.f, 1.f, ratio);
+    const auto [t_lo, t_hi] = transmissionRange(cv);
+    transmission_power.emplace(t_lo, t_hi, ratio);
+    job.pre = preclassified.get();
+    job.shading = &*shading;
+    job.opacity_power = &*opacity_power;
+    job.transmission_power = &*transmission_power;
+  }
+  const BandFn fn = pickKernel(cv.k, cv.t_channels > 1, pre);
   // Bands of kBand scanlines (compositeBand); dynamic over bands, as opaque regions end some
   // bands early.
   constexpr int kBand = 16;

@@ -1,0 +1,80 @@
+#pragma once
+// shearwarp.classification=pre (issue 17): VolPack's own method (Lacroute & Levoy 1994, §3)
+// beside our post-classified default. Each stored voxel of an axis encoding (rle_volume.h) is
+// classified and its normal quantised once, at the voxel:
+//   [α, α·specular, α·ρ_0 … α·ρ_{k−1}, t_0 … t_{kt−1}]   (classification step Δs)
+// plus a 16-bit octahedral normal index. A sample interpolates these classified records
+// bilinearly — pre-classification: the colour of the interpolated voxels, not the voxel values'
+// interpolated colour — and is shaded from a per-view table over the normal indices
+// (ShadingTable), as VolPack's vpShadeTable. The slice spacing correction, α' = 1 − (1 − α)^r
+// and t' = t^r with r = slice spacing / Δs, is applied to the interpolated α and t through
+// per-view tables (PowerTable). The records share the runs and row spans of the post-classified
+// encoding (its occupancy criterion covers every voxel with α > 0), indexed alike.
+//
+// What it costs in accuracy is charted by svr compare's variant row (svr demo runs it).
+
+#include <cstdint>
+#include <memory>
+#include <vector>
+
+#include "renderers/core/classification.h"
+#include "renderers/core/classified_sample.h"
+#include "renderers/shearwarp/rle_volume.h"
+
+namespace svr::shearwarp {
+
+// 16-bit octahedral normal indices (8 bits per coordinate); kFlatNormal marks a vanishing
+// gradient (full light, no highlight, as phong()).
+inline constexpr std::uint16_t kFlatNormal = 0xffff;
+std::uint16_t encodeNormal(const float g[3]);
+void decodeNormal(std::uint16_t index, float n[3]);
+
+class PreclassifiedAxis {
+ public:
+  PreclassifiedAxis(const ClassifiedVolume& cv, const AxisEncoding& encoding);
+  // The classification's instance for this axis, built on first use and cached on it.
+  static std::shared_ptr<const PreclassifiedAxis> of(const ClassifiedVolume& cv, int axis);
+
+  int stride() const { return stride_; }  // floats per record (2 + k + kt, padded to 4)
+  // Row j of slice k indexed by voxel i, as AxisEncoding::rowRecords.
+  const float* rowRecords(int k, int j) const {
+    return records_[k].data() +
+           (static_cast<std::ptrdiff_t>(encoding_->row(k, j).offset) - encoding_->row(k, j).lo) *
+               stride_;
+  }
+  const std::uint16_t* rowNormals(int k, int j) const {
+    return normals_[k].data() + static_cast<std::ptrdiff_t>(encoding_->row(k, j).offset) -
+           encoding_->row(k, j).lo;
+  }
+  std::size_t bytes() const;
+
+ private:
+  const AxisEncoding* encoding_;
+  int stride_;
+  std::vector<std::vector<float>> records_;        // per slice
+  std::vector<std::vector<std::uint16_t>> normals_;  // per slice
+};
+
+// Per view: shade and highlight (phong()'s terms) of every normal index.
+struct ShadingTable {
+  std::vector<float> shade, highlight;  // 65536 each
+  explicit ShadingTable(const PhongSetup& phong);
+};
+
+// x ↦ sign(x)·|x|^r, tabulated over [lo, hi] with linear interpolation (clamped outside).
+class PowerTable {
+ public:
+  PowerTable(float lo, float hi, double r);
+  float operator()(float x) const {
+    const float p = std::clamp((x - lo_) * inv_step_, 0.f, static_cast<float>(kSteps));
+    const int i = std::min(static_cast<int>(p), kSteps - 1);
+    return values_[i] + (p - static_cast<float>(i)) * (values_[i + 1] - values_[i]);
+  }
+  static constexpr int kSteps = 4096;
+
+ private:
+  float lo_, inv_step_;
+  std::vector<float> values_;
+};
+
+}  // namespace svr::shearwarp
