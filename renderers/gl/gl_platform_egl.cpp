@@ -79,12 +79,14 @@ std::vector<Device> enumerateDevices() {
 }
 
 // eglInitialize and eglTerminate act on a display for the whole process, so the display of
-// the chosen device is shared by every context and terminated when the last one goes.
+// the chosen device is opened once, shared by every context and kept until the process ends:
+// terminating it unloads Mesa's driver, and what the driver keeps of compiled shaders (a few
+// hundred bytes) would then be reported as leaked from an unknown module, where
+// LeakSanitizer suppressions cannot name it.
 struct SharedDisplay {
   std::mutex mutex;
   EGLDisplay display = EGL_NO_DISPLAY;
   bool software = false;
-  int users = 0;
   std::string description;
 };
 SharedDisplay& sharedDisplay() {
@@ -97,15 +99,13 @@ class EglPlatform final : public GlPlatform {
   EglPlatform() {
     SharedDisplay& shared = sharedDisplay();
     const std::lock_guard lock(shared.mutex);
-    if (shared.users == 0) open(shared);
+    if (shared.display == EGL_NO_DISPLAY) open(shared);
     display_ = shared.display;
     describe_ = shared.description;
     const char* extensions = eglQueryString(display_, EGL_EXTENSIONS);
     for (const char* needed : {"EGL_KHR_surfaceless_context", "EGL_KHR_no_config_context"})
-      if (!hasExtension(extensions, needed)) {
-        closeIfUnused(shared);
+      if (!hasExtension(extensions, needed))
         throw Error(fmt::format("gl: the EGL display ({}) lacks {}", describe_, needed));
-      }
     const EGLint attributes[] = {EGL_CONTEXT_MAJOR_VERSION, 4, EGL_CONTEXT_MINOR_VERSION, 5,
                                  EGL_CONTEXT_OPENGL_PROFILE_MASK,
                                  EGL_CONTEXT_OPENGL_CORE_PROFILE_BIT, EGL_NONE};
@@ -113,18 +113,13 @@ class EglPlatform final : public GlPlatform {
         (context_ = eglCreateContext(display_, EGL_NO_CONFIG_KHR, EGL_NO_CONTEXT, attributes)) ==
             EGL_NO_CONTEXT) {
       const EGLint error = eglGetError();
-      closeIfUnused(shared);
       throw Error(fmt::format("gl: EGL could not create an OpenGL 4.5 core context on {}: {}",
                               describe_, eglErrorName(error)));
     }
-    ++shared.users;
   }
   ~EglPlatform() override {
-    SharedDisplay& shared = sharedDisplay();
-    const std::lock_guard lock(shared.mutex);
+    const std::lock_guard lock(sharedDisplay().mutex);
     eglDestroyContext(display_, context_);
-    --shared.users;
-    closeIfUnused(shared);
   }
   GlPlatformKind kind() const override { return GlPlatformKind::kEgl; }
   void makeCurrent() override {
@@ -166,13 +161,6 @@ class EglPlatform final : public GlPlatform {
     }
     throw Error(fmt::format("gl: no EGL device could be initialised ({})", failures));
   }
-  static void closeIfUnused(SharedDisplay& shared) {
-    if (shared.users > 0 || shared.display == EGL_NO_DISPLAY) return;
-    eglTerminate(shared.display);
-    eglReleaseThread();
-    shared.display = EGL_NO_DISPLAY;
-  }
-
   EGLDisplay display_ = EGL_NO_DISPLAY;
   EGLContext context_ = EGL_NO_CONTEXT;
   std::string describe_;

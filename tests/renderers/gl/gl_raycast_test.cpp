@@ -7,8 +7,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdlib>
-#include <fstream>
 #include <fmt/format.h>
 #include <glm/geometric.hpp>
 
@@ -198,44 +196,6 @@ TEST(GlRaycast, VolumeBeyondThe3dTextureLimitIsAnError) {
               std::string::npos)
         << e.what();
   }
-}
-
-}  // namespace
-}  // namespace svr
-
-namespace svr {
-namespace {
-
-long threadsOfThisProcess() {
-  std::ifstream status("/proc/self/status");
-  for (std::string line; std::getline(status, line);)
-    if (line.rfind("Threads:", 0) == 0) return std::stol(line.substr(8));
-  return -1;
-}
-
-// Identical bytes with 1 and 2 llvmpipe threads (LP_NUM_THREADS, read when llvmpipe's screen is
-// made: the EGL display is opened afresh for each renderer here, as none outlives it). Every
-// pixel is its own ray, so no thread count can change a sum. The process's thread count while
-// the context lives shows the setting took.
-TEST(GlRaycast, SameBytesWithOneAndTwoLlvmpipeThreads) {
-  const Scene scene = test::phantomScene();
-  const auto model = makeSpectralModel(test::rendererObserver(), 6);
-  const ClassifiedVolume cv = classifyScene(scene, *model);
-  const char* before = std::getenv("LP_NUM_THREADS");
-  const std::string saved = before ? before : "";
-  std::vector<LightIndependentImage> images;
-  std::vector<long> threads;
-  for (const char* n : {"1", "2"}) {
-    setenv("LP_NUM_THREADS", n, 1);
-    const GlRenderer renderer;
-    images.push_back(test::render(renderer, scene, cv, glOptions("egl")));
-    threads.push_back(threadsOfThisProcess());
-  }
-  if (before) setenv("LP_NUM_THREADS", saved.c_str(), 1);
-  else unsetenv("LP_NUM_THREADS");
-  EXPECT_GT(threads[1], threads[0]) << "LP_NUM_THREADS did not take";
-  for (int p = 0; p < images[0].planes(); ++p)
-    ASSERT_TRUE(std::ranges::equal(images[0].planeFloat(p), images[1].planeFloat(p))) << p;
 }
 
 }  // namespace
