@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <utility>
 
 #include "renderers/core/volume.h"
 
@@ -39,8 +40,12 @@ void decodeNormal(std::uint16_t index, float n[3]) {
   n[0] = x / len, n[1] = y / len, n[2] = z / len;
 }
 
-PreclassifiedAxis::PreclassifiedAxis(const ClassifiedVolume& cv, const AxisEncoding& encoding)
-    : encoding_(&encoding), stride_((2 + cv.k + cv.t_channels + 3) / 4 * 4) {
+PreclassifiedAxis::PreclassifiedAxis(const ClassifiedVolume& cv,
+                                     std::shared_ptr<const RleVolume> encoded, int axis)
+    : encoded_(std::move(encoded)),
+      encoding_(&encoded_->encoding(axis)),
+      stride_((2 + cv.k + cv.t_channels + 3) / 4 * 4) {
+  const AxisEncoding& encoding = *encoding_;
   const int k = cv.k, kt = cv.t_channels, n_k = encoding.slices(), n_j = encoding.rowCount();
   records_.resize(n_k);
   normals_.resize(n_k);
@@ -84,8 +89,11 @@ PreclassifiedAxis::PreclassifiedAxis(const ClassifiedVolume& cv, const AxisEncod
 std::shared_ptr<const PreclassifiedAxis> PreclassifiedAxis::of(const ClassifiedVolume& cv,
                                                                int axis) {
   static const char* const kKeys[3] = {"shearwarp.pre.x", "shearwarp.pre.y", "shearwarp.pre.z"};
+  // The encoding first: the cache is not re-entrant (a get inside a get's builder deadlocks).
+  auto encoded = RleVolume::of(cv);
+  encoded->encoding(axis);
   return cv.derived->get<PreclassifiedAxis>(kKeys[axis], [&] {
-    return std::make_shared<const PreclassifiedAxis>(cv, RleVolume::of(cv)->encoding(axis));
+    return std::make_shared<const PreclassifiedAxis>(cv, encoded, axis);
   });
 }
 

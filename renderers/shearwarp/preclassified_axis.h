@@ -31,7 +31,9 @@ void decodeNormal(std::uint16_t index, float n[3]);
 
 class PreclassifiedAxis {
  public:
-  PreclassifiedAxis(const ClassifiedVolume& cv, const AxisEncoding& encoding);
+  // Keeps `encoded` (whose axis encoding it indexes) alive.
+  PreclassifiedAxis(const ClassifiedVolume& cv, std::shared_ptr<const RleVolume> encoded,
+                    int axis);
   // The classification's instance for this axis, built on first use and cached on it.
   static std::shared_ptr<const PreclassifiedAxis> of(const ClassifiedVolume& cv, int axis);
 
@@ -49,6 +51,7 @@ class PreclassifiedAxis {
   std::size_t bytes() const;
 
  private:
+  std::shared_ptr<const RleVolume> encoded_;
   const AxisEncoding* encoding_;
   int stride_;
   std::vector<std::vector<float>> records_;        // per slice
