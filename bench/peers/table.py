@@ -66,14 +66,15 @@ def main():
         for path in sorted(glob.glob(os.path.join(folder, "volpack_t*.json"))):
             ours, threads = bench_times(path), threads_of(path)
             for name, ms in ours.items():
-                if not name.startswith("Shearwarp/"):
+                if not name.startswith(("Shearwarp/", "ShearwarpPre/")):
                     continue
-                _, model, size, view = name.split("/")
+                row, model, size, view = name.split("/")
+                ours_name = "shearwarp pre" if row == "ShearwarpPre" else "shearwarp"
                 pairs = [("rgb", "VolPack rgb")] + ([("grey", "VolPack grey")] if model == "rgb" else [])
                 for colour, label in pairs:
                     p = peer.get(f"VolPack/{colour}/{size}/{view}")
                     if p:
-                        rows.append(dict(peer=label, peer_threads=1, ours="shearwarp", model=model,
+                        rows.append(dict(peer=label, peer_threads=1, ours=ours_name, model=model,
                                          size=int(size), view=view, threads=threads,
                                          peer_ms=p, ours_ms=ms, ratio=ms / p))
     # VTK's fixed-point ray caster against our raycaster, at equal threads.
@@ -142,7 +143,7 @@ def main():
             print()
         print(f"Load average when the table was made: {load}.")
     else:
-        widths = [18, 10, 9, 6, 6, 7, 9, 9, 6]
+        widths = [18, 13, 9, 6, 6, 7, 9, 9, 6]
         line = lambda vals: " ".join(f"{v:<{w}}" if i < 3 else f"{v:>{w}}"
                                      for i, (v, w) in enumerate(zip(vals, widths)))
         for title, table in (("Every view", rows), ("Geometric mean over the views", summary)):

@@ -3,6 +3,8 @@
 // principal-axis switch, at 512² and 800²:
 //   VolPack/<grey|rgb>/<size>/az<deg>         vpShadeTable + vpRenderClassifiedVolume
 //   Shearwarp/<rgb|factor:6>/<size>/az<deg>   ShearWarpRenderer::render with the encoding built
+//   ShearwarpPre/<rgb|factor:6>/<size>/az<deg> the same with shearwarp.classification=pre
+//                                              (VolPack's pre-classified method)
 // Both classify once outside the timed loop (VolPack: vpClassifyScalars into its run-length
 // encoded volume; ours: classify + RleVolume::buildAll), as a viewer does while only the view
 // changes. VolPack is single-threaded: run this with OMP_NUM_THREADS=1 for equal threads
@@ -229,13 +231,15 @@ void volpackFrame(benchmark::State& state, int channels, int size, double azimut
   }
 }
 
-void shearwarpFrame(benchmark::State& state, const std::string& model, int size, double azimuth) {
+void shearwarpFrame(benchmark::State& state, const std::string& model, int size, double azimuth,
+                    const std::string& classification) {
   const ClassifiedVolume& cv = engineClassified(model);
   shearwarp::RleVolume::of(cv)->buildAll();  // cached on the classification, as in a viewer
   const ShearWarpRenderer renderer;
-  const RenderRequest request = engineRequest(cv, azimuth, size);
+  RenderRequest request = engineRequest(cv, azimuth, size);
+  request.options["shearwarp"] = {{"classification", classification}};
   const LightIndependentImage first = renderer.render(request);
-  if (!imagesDir.empty() && model == "rgb") {
+  if (!imagesDir.empty() && model == "rgb" && classification == "post") {
     std::vector<unsigned char> rgb(static_cast<std::size_t>(size) * size * 3);
     for (int c = 0; c < 3; ++c) {
       const auto plane = first.planeFloat(c);
@@ -263,13 +267,15 @@ void registerAll() {
             ->UseRealTime()
             ->Unit(benchmark::kMillisecond)
             ->MinTime(0.3);
-      for (const char* model : {"rgb", "factor:6"})
-        benchmark::RegisterBenchmark(
-            fmt::format("Shearwarp/{}/{}/az{}", model, size, az).c_str(), shearwarpFrame,
-            std::string(model), size, az)
-            ->UseRealTime()
-            ->Unit(benchmark::kMillisecond)
-            ->MinTime(0.3);
+      for (const auto& [row, classification] :
+           {std::pair{"Shearwarp", "post"}, std::pair{"ShearwarpPre", "pre"}})
+        for (const char* model : {"rgb", "factor:6"})
+          benchmark::RegisterBenchmark(
+              fmt::format("{}/{}/{}/az{}", row, model, size, az).c_str(), shearwarpFrame,
+              std::string(model), size, az, std::string(classification))
+              ->UseRealTime()
+              ->Unit(benchmark::kMillisecond)
+              ->MinTime(0.3);
     }
 }
 

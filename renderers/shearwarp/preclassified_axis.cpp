@@ -8,8 +8,8 @@
 
 namespace svr::shearwarp {
 
-// Octahedral mapping (Meyer et al. 2010): the unit sphere folded onto [−1, 1]², 256 steps a
-// side; the index (255, 255) is left to kFlatNormal.
+// Octahedral mapping (Meyer et al. 2010): the unit sphere folded onto [−1, 1]², kNormalSide
+// steps a side.
 std::uint16_t encodeNormal(const float g[3]) {
   const float len1 = std::abs(g[0]) + std::abs(g[1]) + std::abs(g[2]);
   const float len2 = std::sqrt(g[0] * g[0] + g[1] * g[1] + g[2] * g[2]);
@@ -20,16 +20,18 @@ std::uint16_t encodeNormal(const float g[3]) {
     const float fy = (1.f - std::abs(x)) * (y >= 0.f ? 1.f : -1.f);
     x = fx, y = fy;
   }
-  const auto q = [](float c) {
-    return static_cast<int>(std::clamp(std::lround((c * 0.5f + 0.5f) * 255.f), 0l, 255l));
+  constexpr float kTop = kNormalSide - 1;
+  const auto q = [&](float c) {
+    return static_cast<int>(std::clamp(std::lround((c * 0.5f + 0.5f) * kTop), 0l,
+                                       static_cast<long>(kTop)));
   };
-  int qx = q(x), qy = q(y);
-  if (qx == 255 && qy == 255) qx = 254;
-  return static_cast<std::uint16_t>(qy * 256 + qx);
+  return static_cast<std::uint16_t>(q(y) * kNormalSide + q(x));
 }
 
 void decodeNormal(std::uint16_t index, float n[3]) {
-  float x = (index % 256) / 255.f * 2.f - 1.f, y = (index / 256) / 255.f * 2.f - 1.f;
+  constexpr float kTop = kNormalSide - 1;
+  float x = static_cast<float>(index % kNormalSide) / kTop * 2.f - 1.f;
+  float y = static_cast<float>(index / kNormalSide) / kTop * 2.f - 1.f;
   const float z = 1.f - std::abs(x) - std::abs(y);
   if (z < 0.f) {
     const float fx = (1.f - std::abs(y)) * (x >= 0.f ? 1.f : -1.f);
@@ -104,14 +106,13 @@ std::size_t PreclassifiedAxis::bytes() const {
   return n;
 }
 
-ShadingTable::ShadingTable(const PhongSetup& phong) : shade(65536), highlight(65536) {
-#pragma omp parallel for schedule(static)
-  for (int i = 0; i < 65536; ++i) {
+ShadingTable::ShadingTable(const PhongSetup& phong) : terms(2 * (kFlatNormal + 1)) {
+  for (int i = 0; i <= kFlatNormal; ++i) {
     float n[3] = {0.f, 0.f, 0.f};
     if (i != kFlatNormal) decodeNormal(static_cast<std::uint16_t>(i), n);
     const PhongTerms t = svr::phong(phong, n);
-    shade[i] = t.shade;
-    highlight[i] = t.highlight;
+    terms[2 * i] = t.shade;
+    terms[2 * i + 1] = t.highlight;
   }
 }
 

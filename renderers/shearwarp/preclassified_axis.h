@@ -23,9 +23,12 @@
 
 namespace svr::shearwarp {
 
-// 16-bit octahedral normal indices (8 bits per coordinate); kFlatNormal marks a vanishing
-// gradient (full light, no highlight, as phong()).
-inline constexpr std::uint16_t kFlatNormal = 0xffff;
+// Octahedral normal indices, kNormalSide steps per coordinate (about 1.4° apart: VolPack
+// quantises to 13 bits); kFlatNormal, one past them, marks a vanishing gradient (full light,
+// no highlight, as phong()). 128² entries keep the per-view table (interleaved shade and
+// highlight, 128 KiB) in L2: at 256² (512 KiB in two arrays) its lookups missed.
+inline constexpr int kNormalSide = 128;
+inline constexpr std::uint16_t kFlatNormal = kNormalSide * kNormalSide;
 std::uint16_t encodeNormal(const float g[3]);
 void decodeNormal(std::uint16_t index, float n[3]);
 
@@ -58,9 +61,9 @@ class PreclassifiedAxis {
   std::vector<std::vector<std::uint16_t>> normals_;  // per slice
 };
 
-// Per view: shade and highlight (phong()'s terms) of every normal index.
+// Per view: shade and highlight (phong()'s terms) of every normal index, interleaved.
 struct ShadingTable {
-  std::vector<float> shade, highlight;  // 65536 each
+  std::vector<float> terms;  // 2 × (kFlatNormal + 1): shade, highlight of index i at 2i, 2i + 1
   explicit ShadingTable(const PhongSetup& phong);
 };
 

@@ -200,8 +200,7 @@ template <int K, bool kSpectralT>
   const int n_i = enc.rowLength(), n_j = enc.rowCount();
   const double inv_scale = 1.0 / f.scale;
   const float* white = cv.white.data();
-  const float* shade_of = job.shading->shade.data();
-  const float* highlight_of = job.shading->highlight.data();
+  const float* terms = job.shading->terms.data();
   const int rs = pre.stride();
   float* row = im.pixel(0, v);
   const int stride = im.channels();
@@ -237,8 +236,8 @@ template <int K, bool kSpectralT>
         const float scale = corrected / a;
         float ws[4], wh = 0.f;
         for (int n = 0; n < 4; ++n) {
-          ws[n] = scale * w[n] * shade_of[nidx[n]];
-          wh += scale * w[n] * c[n][1] * highlight_of[nidx[n]];
+          ws[n] = scale * w[n] * terms[2 * nidx[n]];
+          wh += scale * w[n] * c[n][1] * terms[2 * nidx[n] + 1];
         }
         for (int ch = 0; ch < k; ++ch)
           S[ch] += T[kSpectralT ? ch : 0] *
