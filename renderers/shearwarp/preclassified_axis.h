@@ -3,7 +3,7 @@
 // beside our post-classified default. Each stored voxel of an axis encoding (rle_volume.h) is
 // classified and its normal quantised once, at the voxel:
 //   [α, α·specular, α·ρ_0 … α·ρ_{k−1}, t_0 … t_{kt−1}]   (classification step Δs)
-// plus a 16-bit octahedral normal index. A sample interpolates these classified records
+// plus a 14-bit octahedral normal index. A sample interpolates these classified records
 // bilinearly — pre-classification: the colour of the interpolated voxels, not the voxel values'
 // interpolated colour — and is shaded from a per-view table over the normal indices
 // (ShadingTable), as VolPack's vpShadeTable. The slice spacing correction, α' = 1 − (1 − α)^r
@@ -23,8 +23,8 @@
 
 namespace svr::shearwarp {
 
-// Octahedral normal indices, kNormalSide steps per coordinate (about 1.4° apart: VolPack
-// quantises to 13 bits); kFlatNormal, one past them, marks a vanishing gradient (full light,
+// Octahedral normal indices, kNormalSide steps per coordinate (within 1.8° of the gradient's
+// direction; VolPack quantises to 13 bits); kFlatNormal, one past them, marks a vanishing gradient (full light,
 // no highlight, as phong()). 128² entries keep the per-view table (interleaved shade and
 // highlight, 128 KiB) in L2: at 256² (512 KiB in two arrays) its lookups missed.
 inline constexpr int kNormalSide = 128;
