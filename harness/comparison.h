@@ -54,7 +54,10 @@ struct RunResult {
   std::string model_name, model_description;
   nlohmann::json model_choice;  // SceneModel::record(): auto's choice and the error behind it
   int k = 0;
-  double classify_ms = 0.0, render_ms = 0.0, relight_ms = 0.0;  // relight: per light
+  // render: a steady frame (the same view rendered again, with what the backend keeps per
+  // classification already built: encodings, gradients, uploads); first_render: the first frame
+  // of the classification, which builds them. relight: per light.
+  double classify_ms = 0.0, render_ms = 0.0, first_render_ms = 0.0, relight_ms = 0.0;
   std::vector<LightResult> lights;
 };
 
@@ -84,10 +87,12 @@ class ComparisonSession {
   struct Rendered {
     SceneModel chosen;
     LightIndependentImage image;
-    double classify_ms, render_ms;
+    double classify_ms, first_render_ms, render_ms;  // render_ms: steady (first when !steady)
   };
+  // steady: render the view a second time and time that too.
   Rendered render(const std::string& renderer, const std::string& model,
-                  const nlohmann::json& options, double step_voxels, double termination);
+                  const nlohmann::json& options, double step_voxels, double termination,
+                  bool steady = false);
 
   Scene scene_;
   SpectrumLibrary library_;

@@ -32,7 +32,9 @@ int runDemo(const DemoOptions& o) {
     c.width = c.height = o.quick ? 128 : 256;
     // gl ray casts by default; its splats run beside it, so the report shows both.
     const std::vector<std::string> built = rendererNames();
-    if (std::ranges::find(built, "gl") != built.end()) c.variants = {"gl.mode=splat"};
+    // shear-warp post-classifies by default; its pre-classified mode (VolPack's) runs beside it.
+    c.variants = {"shearwarp.classification=pre"};
+    if (std::ranges::find(built, "gl") != built.end()) c.variants.push_back("gl.mode=splat");
     c.charts = false;  // one combined page below
     c.quiet = o.quiet;
     summaries.push_back(runComparison(c));

@@ -6,6 +6,7 @@
 
 #include <cctype>
 #include <chrono>
+#include <optional>
 #include <filesystem>
 #include <memory>
 #include <nlohmann/json.hpp>
@@ -67,8 +68,11 @@ std::vector<RelitOutput> sceneOutputs(const Scene& scene, const ColourModel& mod
   return outputs;
 }
 
+// render: the classification's first frame, which builds what the backend keeps per
+// classification (encodings, gradients, uploads); steady: the same view again (--steady).
 struct Timings {
   double load = 0, classify = 0, render = 0, relight = 0;
+  std::optional<double> steady;
 };
 
 nlohmann::json renderReport(const RenderOptions& o, const Scene& scene, const Renderer& renderer,
@@ -78,6 +82,9 @@ nlohmann::json renderReport(const RenderOptions& o, const Scene& scene, const Re
   const ColourModel& model = *chosen.model;
   nlohmann::json images = nlohmann::json::array();
   for (const auto& out : outputs) images.push_back({{"light", out.name}, {"file", out.file}});
+  nlohmann::json timings = {
+      {"load", t.load}, {"classify", t.classify}, {"render", t.render}, {"relight", t.relight}};
+  if (t.steady) timings["render_steady"] = *t.steady;
   return {
       {"renderer", renderer.name()},
       {"model", model.name()},
@@ -94,8 +101,7 @@ nlohmann::json renderReport(const RenderOptions& o, const Scene& scene, const Re
       {"renderer_options", scene.renderer_options},
       {"exr", "light_independent.exr"},
       {"model_file", "light_independent.model.json"},
-      {"timings_ms",
-       {{"load", t.load}, {"classify", t.classify}, {"render", t.render}, {"relight", t.relight}}},
+      {"timings_ms", timings},
       {"images", images},
       {"notes", notes},
   };
@@ -149,19 +155,25 @@ int runRender(const RenderOptions& o) {
   const auto t_render = clock::now();
   LightIndependentImage image;
   std::vector<std::string> notes;  // shown after the progress bar, not through it
+  RenderRequest request = sceneRequest(scene, classified);
+  request.memory_budget = volume_options.memory_budget;
+  request.note = [&](const std::string& note) { notes.push_back(note); };
   {
     Progress progress("render", 100, o.quiet);
     int shown = 0;
-    RenderRequest request = sceneRequest(scene, classified);
-    request.memory_budget = volume_options.memory_budget;
-    request.note = [&](const std::string& note) { notes.push_back(note); };
     image = renderer->render(request, [&](double f) {
       while (shown < static_cast<int>(f * 100)) ++shown, progress.advance();
     });
   }
+  t.render = msSince(t_render);
+  if (o.steady) {
+    request.note = nullptr;  // the first frame said it all
+    const auto t_steady = clock::now();
+    image = renderer->render(request, nullptr);
+    t.steady = msSince(t_steady);
+  }
   if (!o.quiet)
     for (const auto& note : notes) fmt::print(stderr, "svr: note: {}\n", note);
-  t.render = msSince(t_render);
 
   // From here on files are written: Ctrl-C waits for them to be complete (issue 9).
   const WritingOutputs writing;
@@ -191,10 +203,11 @@ int runRender(const RenderOptions& o) {
   const nlohmann::json report = renderReport(o, scene, *renderer, chosen, image, outputs, t, notes);
   writeTextAtomically((fs::path(o.out_dir) / "render.json").string(), report.dump(1) + "\n");
   if (!o.quiet)
-    fmt::print("{}: {} with {} ({}), {}×{}: load {:.0f} ms, classify {:.0f} ms, render {:.0f} ms, "
+    fmt::print("{}: {} with {} ({}), {}×{}: load {:.0f} ms, classify {:.0f} ms, render {:.0f} ms{}, "
                "relight {:.2f} ms/light → {}\n",
                o.scene, renderer->name(), model.name(), chosen.description, image.width(),
-               image.height(), t.load, t.classify, t.render, t.relight, o.out_dir);
+               image.height(), t.load, t.classify, t.render,
+               t.steady ? fmt::format(" (steady {:.0f} ms)", *t.steady) : "", t.relight, o.out_dir);
   return 0;
 }
 
@@ -216,6 +229,10 @@ CommandEntry render() {
             sub.add_option("--width", o->width, "image width (default: the scene's)");
             sub.add_option("--height", o->height, "image height (default: the scene's)");
             sub.add_flag("--half", o->half, "store the light-independent EXR as half floats");
+            sub.add_flag("--steady", o->steady,
+                         "render the view a second time and report that steady frame's time "
+                         "too (timings_ms.render_steady): the first frame also builds what the "
+                         "backend keeps per classification");
             sub.add_option("--option", o->options,
                            "backend option BACKEND.KEY=VALUE (repeatable), e.g. splat.mode=sheet; "
                            "--help-options lists them");

@@ -21,6 +21,7 @@ struct RenderOptions {
   std::vector<std::string> options;  // "backend.key=value", over the scene's render.options
   std::optional<std::uint64_t> memory_budget;
   bool quiet = false;
+  bool steady = false;  // render the view again and report that frame's time too
 };
 
 int runRender(const RenderOptions& options);
