@@ -119,34 +119,23 @@ template <int kStride>
   for (int j = 0; j < width; ++j) acc[j] = r0[j] + frac * (r1[j] - r0[j]);
 }
 
-// One slice's samples on intermediate scanline v (whose opaque pixels `links` skips).
-template <int K, bool kSpectralT>
-[[gnu::always_inline]] inline void compositeSlice(const CompositeJob& job, int v, int slice,
-                                                  int* links) {
-  const ClassifiedVolume& cv = *job.volume;
+// Every live intermediate pixel u of scanline v that slice `slice`'s cell runs cover: perRow(j0,
+// fj) is called once with the cell row and its fraction along j, and returns the per-sample
+// function sample(u, i0, fi) (i0: the cell along i, fi: the fraction), which composites pixel
+// u and says whether it became opaque (links then skips it from now on).
+template <class PerRow>
+[[gnu::always_inline]] inline void forEachSample(const CompositeJob& job, int v, int slice,
+                                                 int* links, const PerRow& perRow) {
   const AxisEncoding& enc = *job.encoding;
   const ShearWarpFactorization& f = *job.view;
-  const SliceTable& table = *job.table;
-  IntermediateImage& im = *job.image;
-  const int k = K > 0 ? K : cv.k;
-  const int kt = kSpectralT ? k : 1;
-  constexpr int kStride = K > 0 ? SliceTable::strideFor(2 + K + (kSpectralT ? K : 1)) : 0;
-  constexpr int kWidthCap = SliceTable::strideFor(2 + kMaxChannels + kMaxChannels);
-  const int width = im.width;
+  const int width = job.image->width;
   const int n_i = enc.rowLength(), n_j = enc.rowCount();
   const double inv_scale = 1.0 / f.scale;
-  const float* white = cv.white.data();
-  float* row = im.pixel(0, v);
-  const int stride = im.channels();
-
   const double qj = v * inv_scale + f.offset_j + f.shear_j * slice;
   if (!(qj >= 0.0 && qj <= n_j - 1)) return;
   const int j0 = std::min(static_cast<int>(qj), n_j - 2);
-  const float fj = static_cast<float>(qj - j0);
+  const auto sample = perRow(j0, static_cast<float>(qj - j0));
   const double base_i = f.offset_i + f.shear_i * slice;
-  // Voxel i of rows j0 and j0 + 1, for the i the cell runs touch.
-  const VoxelRecord* rec0 = enc.rowRecords(slice, j0);
-  const VoxelRecord* rec1 = enc.rowRecords(slice, j0 + 1);
   for (const CellRun& run : enc.runs(slice, j0)) {
     const int u_begin = std::max(firstPixel(run.begin, base_i, inv_scale, f.scale, false), 0);
     // The last cell of a row also holds the samples exactly on the row's last voxel.
@@ -156,13 +145,36 @@ template <int K, bool kSpectralT>
       const double qi = u * inv_scale + base_i;
       const int i0 = std::clamp(static_cast<int>(qi), run.begin, run.end - 1);
       const float fi = std::clamp(static_cast<float>(qi - i0), 0.f, 1.f);
+      if (sample(u, i0, fi)) links[u] = u + 1;
+    }
+  }
+}
+
+// One slice's samples on intermediate scanline v, post-classified.
+template <int K, bool kSpectralT>
+[[gnu::always_inline]] inline void compositeSlice(const CompositeJob& job, int v, int slice,
+                                                  int* links) {
+  const ClassifiedVolume& cv = *job.volume;
+  const AxisEncoding& enc = *job.encoding;
+  const SliceTable& table = *job.table;
+  const int k = K > 0 ? K : cv.k;
+  const int kt = kSpectralT ? k : 1;
+  constexpr int kStride = K > 0 ? SliceTable::strideFor(2 + K + (kSpectralT ? K : 1)) : 0;
+  constexpr int kWidthCap = SliceTable::strideFor(2 + kMaxChannels + kMaxChannels);
+  const float* white = cv.white.data();
+  float* row = job.image->pixel(0, v);
+  const int stride = job.image->channels();
+  forEachSample(job, v, slice, links, [&](int j0, float fj) {
+    // Voxel i of rows j0 and j0 + 1, for the i the cell runs touch.
+    const VoxelRecord* rec0 = enc.rowRecords(slice, j0);
+    const VoxelRecord* rec1 = enc.rowRecords(slice, j0 + 1);
+    return [&, rec0, rec1, fj](int u, int i0, float fi) {
       const VoxelRecord* const c[4] = {rec0 + i0, rec0 + i0 + 1, rec1 + i0, rec1 + i0 + 1};
       const float w[4] = {(1 - fi) * (1 - fj), fi * (1 - fj), (1 - fi) * fj, fi * fj};
       alignas(16) float acc[K > 0 ? kStride : kWidthCap];
       blendRow<kStride>(cv, table, c, w, table.stride, acc);
-      float* px = row + static_cast<std::size_t>(u) * stride;
-      float* S = px;
-      float* T = px + k;
+      float* S = row + static_cast<std::size_t>(u) * stride;
+      float* T = S + k;
       if (acc[0] > 0.f) {  // α
         float g[3];
         for (int a = 0; a < 3; ++a)
@@ -178,9 +190,9 @@ template <int K, bool kSpectralT>
         T[ch] *= acc[2 + k + ch];
         tmax = std::max(tmax, T[ch]);
       }
-      if (tmax < job.threshold) links[u] = u + 1;  // opaque: skip it from now on
-    }
-  }
+      return tmax < job.threshold;
+    };
+  });
 }
 
 // compositeSlice for shearwarp.classification=pre: the four corners' classified records
@@ -190,50 +202,30 @@ template <int K, bool kSpectralT>
 [[gnu::always_inline]] inline void compositeSlicePre(const CompositeJob& job, int v, int slice,
                                                      int* links) {
   const ClassifiedVolume& cv = *job.volume;
-  const AxisEncoding& enc = *job.encoding;
   const PreclassifiedAxis& pre = *job.pre;
-  const ShearWarpFactorization& f = *job.view;
-  IntermediateImage& im = *job.image;
   const int k = K > 0 ? K : cv.k;
   const int kt = kSpectralT ? k : 1;
-  const int width = im.width;
-  const int n_i = enc.rowLength(), n_j = enc.rowCount();
-  const double inv_scale = 1.0 / f.scale;
   const float* white = cv.white.data();
   const float* terms = job.shading->terms.data();
   const int rs = pre.stride();
-  float* row = im.pixel(0, v);
-  const int stride = im.channels();
-
-  const double qj = v * inv_scale + f.offset_j + f.shear_j * slice;
-  if (!(qj >= 0.0 && qj <= n_j - 1)) return;
-  const int j0 = std::min(static_cast<int>(qj), n_j - 2);
-  const float fj = static_cast<float>(qj - j0);
-  const double base_i = f.offset_i + f.shear_i * slice;
-  const float* rec0 = pre.rowRecords(slice, j0);
-  const float* rec1 = pre.rowRecords(slice, j0 + 1);
-  const std::uint16_t* nrm0 = pre.rowNormals(slice, j0);
-  const std::uint16_t* nrm1 = pre.rowNormals(slice, j0 + 1);
-  for (const CellRun& run : enc.runs(slice, j0)) {
-    const int u_begin = std::max(firstPixel(run.begin, base_i, inv_scale, f.scale, false), 0);
-    const int u_end =
-        std::min(firstPixel(run.end, base_i, inv_scale, f.scale, run.end == n_i - 1), width);
-    for (int u = nextLive(links, u_begin); u < u_end; u = nextLive(links, u + 1)) {
-      const double qi = u * inv_scale + base_i;
-      const int i0 = std::clamp(static_cast<int>(qi), run.begin, run.end - 1);
-      const float fi = std::clamp(static_cast<float>(qi - i0), 0.f, 1.f);
+  float* row = job.image->pixel(0, v);
+  const int stride = job.image->channels();
+  forEachSample(job, v, slice, links, [&](int j0, float fj) {
+    const float* rec0 = pre.rowRecords(slice, j0);
+    const float* rec1 = pre.rowRecords(slice, j0 + 1);
+    const std::uint16_t* nrm0 = pre.rowNormals(slice, j0);
+    const std::uint16_t* nrm1 = pre.rowNormals(slice, j0 + 1);
+    return [&, rec0, rec1, nrm0, nrm1, fj](int u, int i0, float fi) {
       const float* c[4] = {rec0 + i0 * rs, rec0 + (i0 + 1) * rs, rec1 + i0 * rs,
                            rec1 + (i0 + 1) * rs};
       const std::uint16_t nidx[4] = {nrm0[i0], nrm0[i0 + 1], nrm1[i0], nrm1[i0 + 1]};
       const float w[4] = {(1 - fi) * (1 - fj), fi * (1 - fj), (1 - fi) * fj, fi * fj};
-      float* px = row + static_cast<std::size_t>(u) * stride;
-      float* S = px;
-      float* T = px + k;
+      float* S = row + static_cast<std::size_t>(u) * stride;
+      float* T = S + k;
       const float a = w[0] * c[0][0] + w[1] * c[1][0] + w[2] * c[2][0] + w[3] * c[3][0];
       if (a > 0.f) {
         // S += T ⊙ (α'/α) Σ w (α·ρ · shade + α·s · highlight · white).
-        const float corrected = 1.f - (*job.opacity_power)(1.f - a);
-        const float scale = corrected / a;
+        const float scale = (1.f - (*job.opacity_power)(1.f - a)) / a;
         float ws[4], wh = 0.f;
         for (int n = 0; n < 4; ++n) {
           ws[n] = scale * w[n] * terms[2 * nidx[n]];
@@ -251,9 +243,9 @@ template <int K, bool kSpectralT>
                                            w[3] * c[3][o]);
         tmax = std::max(tmax, T[ch]);
       }
-      if (tmax < job.threshold) links[u] = u + 1;
-    }
-  }
+      return tmax < job.threshold;
+    };
+  });
 }
 
 // Intermediate scanlines [v0, v1) through every slice, front to back. Slice by slice over the
