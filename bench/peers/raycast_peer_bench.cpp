@@ -9,6 +9,8 @@
 //                                             the image back
 //   GlSplat/<rgb|factor:6>/256/az-60          gl.mode=splat (sheets) on the scene's view, for
 //                                             the ratio gl raycast / gl splat at 256²
+//   Splat<Sheet|Direct>/<rgb|factor:6>/512/az<deg>   the splat backend against the fixed-point
+//                                             mapper (OMP_NUM_THREADS as the raycast rows)
 // Classification cached. Threads: OMP_NUM_THREADS for the CPU raycaster (bench/peers/run sets it
 // equal to VTK's SetNumberOfThreads); llvmpipe's LP_NUM_THREADS for both GL rows.
 // Every view renders one untimed frame first (VTK's script does too), then three repetitions of
@@ -36,16 +38,13 @@ namespace {
 // The scene's azimuth, an axis view and one near the 45° diagonal.
 constexpr double kAzimuths[] = {-60.0, 0.0, 44.0};
 
-void raycastFrame(benchmark::State& state, const std::string& backend, const std::string& model,
-                  int size, double azimuth) {
+void raycastFrame(benchmark::State& state, const std::string& backend,
+                  const nlohmann::json& options, const std::string& model, int size,
+                  double azimuth) {
   const ClassifiedVolume& cv = engineClassified(model);
-  auto renderer = makeRenderer(backend == "gl-splat" ? "gl" : backend);
+  const auto renderer = makeRenderer(backend);
   RenderRequest request = engineRequest(cv, azimuth, size);
-  if (backend == "gl") request.options["gl"] = {{"mode", "raycast"}, {"gradients", "precomputed"}};
-  if (backend == "gl-splat") {
-    renderer = makeRenderer("gl");
-    request.options["gl"] = {{"mode", "splat"}};
-  }
+  if (!options.empty()) request.options[backend] = options;
   // One untimed frame first: it builds what the renderer keeps with the classification (the
   // gradient volume), which VTK's warm-up frame builds too.
   benchmark::DoNotOptimize(renderer->render(request).planeFloat(0).data());
@@ -96,30 +95,48 @@ void exportScene(const std::string& prefix) {
 void registerAll() {
   const bool gl_built = std::ranges::any_of(
       backendEntries(), [](const BackendEntry& e) { return e.info.name == "gl" && e.make; });
-  for (const auto& [row, backend] : {std::pair{"Raycast", "raycast"}, std::pair{"GlRaycast", "gl"}}) {
-    if (std::string(backend) == "gl" && !gl_built) continue;
+  struct Row {
+    const char* name;
+    const char* backend;
+    nlohmann::json options;
+  };
+  const nlohmann::json gl_raycast = {{"mode", "raycast"}, {"gradients", "precomputed"}};
+  for (const Row& row : {Row{"Raycast", "raycast", {}}, Row{"GlRaycast", "gl", gl_raycast}}) {
+    if (std::string(row.backend) == "gl" && !gl_built) continue;
     for (int size : {512, 800})
       for (double az : kAzimuths)
         for (const char* model : {"rgb", "factor:6"})
           benchmark::RegisterBenchmark(
-              fmt::format("{}/{}/{}/az{}", row, model, size, az).c_str(), raycastFrame,
-              std::string(backend), std::string(model), size, az)
+              fmt::format("{}/{}/{}/az{}", row.name, model, size, az).c_str(), raycastFrame,
+              std::string(row.backend), row.options, std::string(model), size, az)
               ->UseRealTime()
               ->Unit(benchmark::kMillisecond)
               ->MinTime(0.5)
               ->Repetitions(3)  // the table takes the median, as VTK's rows do
               ->ReportAggregatesOnly(true);
   }
+  // The splat backend against the same VTK rows (issue 17: sheet ≤ 4×, direct ≤ 2× VTK at 512²),
+  // two timed frames after the untimed one: a sheet frame takes seconds.
+  for (const char* mode : {"sheet", "direct"})
+    for (double az : kAzimuths)
+      for (const char* model : {"rgb", "factor:6"})
+        benchmark::RegisterBenchmark(
+            fmt::format("Splat{}/{}/512/az{}", mode[0] == 's' ? "Sheet" : "Direct", model, az)
+                .c_str(),
+            raycastFrame, std::string("splat"), nlohmann::json{{"mode", mode}},
+            std::string(model), 512, az)
+            ->UseRealTime()
+            ->Unit(benchmark::kMillisecond)
+            ->Iterations(2);
   if (!gl_built) return;
-  for (const char* model : {"rgb", "factor:6"}) {
-    for (const auto& [row, backend] : {std::pair{"GlRaycast", "gl"}, std::pair{"GlSplat", "gl-splat"}})
-      benchmark::RegisterBenchmark(fmt::format("{}/{}/256/az-60", row, model).c_str(), raycastFrame,
-                                   std::string(backend), std::string(model), 256, -60.0)
+  for (const char* model : {"rgb", "factor:6"})
+    for (const Row& row : {Row{"GlRaycast", "gl", gl_raycast}, Row{"GlSplat", "gl", {{"mode", "splat"}}}})
+      benchmark::RegisterBenchmark(fmt::format("{}/{}/256/az-60", row.name, model).c_str(),
+                                   raycastFrame, std::string(row.backend), row.options,
+                                   std::string(model), 256, -60.0)
           ->UseRealTime()
           ->Unit(benchmark::kMillisecond)
-          ->Iterations(3)
-          ->Repetitions(1);
-  }
+          ->Iterations(3);
 }
 
 }  // namespace

@@ -77,7 +77,7 @@ def main():
                         rows.append(dict(peer=label, peer_threads=1, ours=ours_name, model=model,
                                          size=int(size), view=view, threads=threads,
                                          peer_ms=p, ours_ms=ms, ratio=ms / p))
-    # VTK's fixed-point ray caster against our raycaster, at equal threads.
+    # VTK's fixed-point ray caster against our raycaster and splats, at equal threads.
     for path in sorted(glob.glob(os.path.join(folder, "vtk_t*.json"))):
         threads = threads_of(path)
         ours_path = os.path.join(folder, f"raycast_t{threads}.json")
@@ -87,11 +87,14 @@ def main():
         for rec in json.load(open(path))["runs"]:
             _, _, size, view = rec["name"].split("/")
             for model in ("rgb", "factor:6"):
-                ms = ours.get(f"Raycast/{model}/{size}/{view}")
-                if ms:
-                    rows.append(dict(peer="VTK fixed-point", peer_threads=threads, ours="raycast",
-                                     model=model, size=int(size), view=view, threads=threads,
-                                     peer_ms=rec["ms"], ours_ms=ms, ratio=ms / rec["ms"]))
+                for row, label in (("Raycast", "raycast"), ("SplatSheet", "splat sheet"),
+                                   ("SplatDirect", "splat direct")):
+                    ms = ours.get(f"{row}/{model}/{size}/{view}")
+                    if ms:
+                        rows.append(dict(peer="VTK fixed-point", peer_threads=threads,
+                                         ours=label, model=model, size=int(size), view=view,
+                                         threads=threads, peer_ms=rec["ms"], ours_ms=ms,
+                                         ratio=ms / rec["ms"]))
     # VTK's GPU ray caster against our gl.mode=raycast, both on llvmpipe.
     gpu_path, gl_path = os.path.join(folder, "vtk_gpu.json"), os.path.join(folder, "glraycast.json")
     if os.path.exists(gpu_path) and os.path.exists(gl_path):
