@@ -24,9 +24,10 @@
 namespace svr::shearwarp {
 
 // Octahedral normal indices, kNormalSide steps per coordinate (within 1.8° of the gradient's
-// direction; VolPack quantises to 13 bits); kFlatNormal, one past them, marks a vanishing gradient (full light,
-// no highlight, as phong()). 128² entries keep the per-view table (interleaved shade and
-// highlight, 128 KiB) in L2: at 256² (512 KiB in two arrays) its lookups missed.
+// direction; VolPack quantises to 13 bits); kFlatNormal, one past them, marks a vanishing
+// gradient (full light, no highlight, as phong()). 128² entries keep the per-view table
+// (interleaved shade and highlight, 128 KiB) in L2: at 256² (512 KiB in two arrays) its
+// lookups missed.
 inline constexpr int kNormalSide = 128;
 inline constexpr std::uint16_t kFlatNormal = kNormalSide * kNormalSide;
 std::uint16_t encodeNormal(const float g[3]);
