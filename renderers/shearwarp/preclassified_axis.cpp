@@ -123,7 +123,7 @@ PowerTable::PowerTable(float lo, float hi, double r)
     : lo_(lo), inv_step_(hi > lo ? kSteps / (hi - lo) : 0.f), values_(kSteps + 1) {
   for (int i = 0; i <= kSteps; ++i) {
     const double x = lo + (hi - lo) * static_cast<double>(i) / kSteps;
-    values_[i] = static_cast<float>(std::copysign(std::pow(std::abs(x), r), x));
+    values_[i] = signedPow(x, r);
   }
 }
 

@@ -13,6 +13,8 @@
 //
 // What it costs in accuracy is charted by svr compare's variant row (svr demo runs it).
 
+#include <algorithm>
+#include <cmath>
 #include <cstdint>
 #include <memory>
 #include <vector>
@@ -68,7 +70,14 @@ struct ShadingTable {
   explicit ShadingTable(const PhongSetup& phong);
 };
 
-// x ↦ sign(x)·|x|^r, tabulated over [lo, hi] with linear interpolation (clamped outside).
+// Sign-preserving power, the slice-spacing correction of both classification modes: factor-
+// model transmission coefficients may dip slightly below zero, where a plain pow of a
+// fractional exponent would give NaN.
+inline float signedPow(double x, double r) {
+  return static_cast<float>(std::copysign(std::pow(std::abs(x), r), x));
+}
+
+// x ↦ signedPow(x, r), tabulated over [lo, hi] with linear interpolation (clamped outside).
 class PowerTable {
  public:
   PowerTable(float lo, float hi, double r);

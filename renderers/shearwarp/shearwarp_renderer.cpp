@@ -41,11 +41,6 @@ std::pair<float, float> transmissionRange(const ClassifiedVolume& cv) {
   return {std::min(lo, 0.f), hi};
 }
 
-// Sign-preserving power: factor-model transmission coefficients may dip slightly below zero,
-// where a plain pow of a fractional exponent would give NaN.
-float signedPow(float t, double r) {
-  return static_cast<float>(std::copysign(std::pow(std::abs(static_cast<double>(t)), r), t));
-}
 
 }  // namespace
 
@@ -83,13 +78,19 @@ LightIndependentImage ShearWarpRenderer::renderImpl(const RenderRequest& req,
       req.camera, req.width, req.height, cv.dims, cv.spacing, options.integer("supersample"));
   const shearwarp::AxisEncoding& encoding = encoded->encoding(view.axis);
 
-  // Opacity and transmission for the slice spacing instead of the classification step.
+  // Opacity and transmission for the slice spacing instead of the classification step: of the
+  // entries (post-classified), or of each sample's interpolated α and t (pre-classified).
   const double ratio = view.slice_spacing_world / cv.step_world;
-  std::vector<float> alpha(cv.entries), transmission(cv.transmission.size());
-  for (int e = 0; e < cv.entries; ++e)
-    alpha[e] = 1.f - signedPow(1.f - cv.alpha[e], ratio);
-  for (std::size_t i = 0; i < transmission.size(); ++i)
-    transmission[i] = signedPow(cv.transmission[i], ratio);
+  const bool pre = options.choice("classification") == "pre";
+  std::optional<shearwarp::SliceTable> table;
+  if (!pre) {
+    std::vector<float> alpha(cv.entries), transmission(cv.transmission.size());
+    for (int e = 0; e < cv.entries; ++e)
+      alpha[e] = 1.f - shearwarp::signedPow(1.f - cv.alpha[e], ratio);
+    for (std::size_t i = 0; i < transmission.size(); ++i)
+      transmission[i] = shearwarp::signedPow(cv.transmission[i], ratio);
+    table.emplace(cv, alpha, transmission);
+  }
 
   const RayGenerator rays(req.camera, req.width, req.height);
   const glm::dvec3 view_dir = -rays.forward();
@@ -110,15 +111,13 @@ LightIndependentImage ShearWarpRenderer::renderImpl(const RenderRequest& req,
     pooled = std::make_unique<shearwarp::IntermediateImage>(view.width, view.height, cv.k,
                                                             cv.t_channels);
   shearwarp::IntermediateImage& intermediate = *pooled;
-  const shearwarp::SliceTable table(cv, alpha, transmission);
   shearwarp::CompositeJob job{&cv,
                               &encoding,
                               &view,
-                              &table,
+                              table ? &*table : nullptr,
                               static_cast<float>(req.termination),
                               PhongSetup(req.shading, light, half),
                               &intermediate};
-  const bool pre = options.choice("classification") == "pre";
   std::shared_ptr<const shearwarp::PreclassifiedAxis> preclassified;
   std::optional<shearwarp::ShadingTable> shading;
   std::optional<shearwarp::PowerTable> opacity_power, transmission_power;
