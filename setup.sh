@@ -16,6 +16,7 @@ PACKAGES=(
   python3-matplotlib python3-numpy
   clang libclang-rt-14-dev time  # the fuzz preset: clang++ and libFuzzer; CPU seconds (tests/fuzz)
   libvolpack1-dev  # bench/peers: VolPack, the shear-warp peer (small, static)
+  libcpp-httplib-dev chromium  # svr view: its HTTP server; its page's tests in a real browser
 )
 case "${1:-}" in
   "") ;;
@@ -30,10 +31,28 @@ for p in "${PACKAGES[@]}"; do
   fi
 done
 
-if [ ${#missing[@]} -eq 0 ]; then
+# The page's tests drive chromium with puppeteer-core from npm (tests/browser/package.json),
+# installed into tests/browser/node_modules. Node comes from Debian's nodejs (with npm) unless
+# the machine already has a node and npm of its own.
+need_node=()
+command -v node >/dev/null || need_node+=(nodejs)
+command -v npm >/dev/null || need_node+=(npm)
+
+browser_deps() {
+  local dir
+  dir="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)/tests/browser"
+  if [ ! -f "$dir/node_modules/puppeteer-core/package.json" ]; then
+    echo "setup: npm ci in tests/browser (puppeteer-core, pngjs)"
+    (cd "$dir" && PUPPETEER_SKIP_DOWNLOAD=1 npm ci --no-audit --no-fund --loglevel=error >/dev/null)
+  fi
+}
+
+if [ ${#missing[@]} -eq 0 ] && [ ${#need_node[@]} -eq 0 ]; then
+  browser_deps
   echo "setup: all ${#PACKAGES[@]} packages present"
   exit 0
 fi
+missing+=("${need_node[@]}")
 
 echo "setup: installing ${missing[*]}"
 SUDO=""
@@ -44,4 +63,5 @@ fi
 export DEBIAN_FRONTEND=noninteractive
 $SUDO apt-get update -qq
 $SUDO apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
+browser_deps
 echo "setup: done"

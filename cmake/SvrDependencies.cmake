@@ -49,3 +49,12 @@ endif()
 if(SVR_BUILD_BENCH)
   find_package(benchmark REQUIRED)
 endif()
+
+# cpp-httplib (Debian's compiled libcpp-httplib): the HTTP server of `svr view`. Without it svr
+# builds all the same, and `svr view` says what to install.
+pkg_check_modules(HTTPLIB IMPORTED_TARGET cpp-httplib)
+if(HTTPLIB_FOUND)
+  message(STATUS "svr: cpp-httplib ${HTTPLIB_VERSION} found, `svr view` will be built")
+else()
+  message(STATUS "svr: cpp-httplib not found (install libcpp-httplib-dev), `svr view` is left out")
+endif()

@@ -10,6 +10,7 @@
 #define SVR_COMMANDS(X) \
   X(render)             \
   X(relight)            \
+  X(view)               \
   X(compare)            \
   X(sweep)              \
   X(demo)               \

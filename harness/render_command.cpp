@@ -25,6 +25,8 @@
 #include "spectral/error.h"
 #include "spectral/light_mixer.h"
 #include "spectral/post_illumination.h"
+#include "viewer/page_data.h"
+#include "viewer/standalone_page.h"
 
 namespace svr {
 namespace fs = std::filesystem;
@@ -200,6 +202,13 @@ int runRender(const RenderOptions& o) {
                             {"scene", o.scene}, {"renderer", renderer->name()}});
   for (const auto& out : outputs)
     writeSrgbPng(out.rgb, image.width(), image.height(), (fs::path(o.out_dir) / out.file).string());
+  if (o.html) {
+    const PageLightContext context{model, observer, scene.background, image.transmittanceChannels()};
+    nlohmann::json info =
+        pageSceneInfo(context, scene, chosen, renderer->name(), orbitViewOf(scene.camera));
+    info["static"] = true;
+    writeTextAtomically((fs::path(o.out_dir) / "view.html").string(), standalonePage(info, image));
+  }
   const nlohmann::json report = renderReport(o, scene, *renderer, chosen, image, outputs, t, notes);
   writeTextAtomically((fs::path(o.out_dir) / "render.json").string(), report.dump(1) + "\n");
   if (!o.quiet)
@@ -229,6 +238,9 @@ CommandEntry render() {
             sub.add_option("--width", o->width, "image width (default: the scene's)");
             sub.add_option("--height", o->height, "image height (default: the scene's)");
             sub.add_flag("--half", o->half, "store the light-independent EXR as half floats");
+            sub.add_flag("--html", o->html,
+                         "also write view.html: the image with the light dial and sliders, "
+                         "relit in the browser, one file that works offline");
             sub.add_flag("--steady", o->steady,
                          "render the view a second time and report that steady frame's time "
                          "too (timings_ms.render_steady): the first frame also builds what the "

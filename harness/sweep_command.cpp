@@ -53,19 +53,11 @@ ParamRange parseRange(const std::string& text) {
 // The scene (and model, and options) at one value of the parameter.
 void apply(const ParamRange& p, double v, const Scene& base, Scene& s, std::string& model,
            nlohmann::json& options) {
-  const glm::dvec3 offset = base.camera.eye - base.camera.target;
-  const double distance = glm::length(offset);
-  const double elevation = std::asin(std::clamp(offset.z / distance, -1.0, 1.0)) * 180.0 / M_PI;
-  const double azimuth = std::atan2(offset.y, offset.x) * 180.0 / M_PI;
-  if (p.name == "azimuth" || p.name == "elevation") {
-    s.camera = Camera::orbit(p.name == "azimuth" ? v : azimuth,
-                             p.name == "elevation" ? v : elevation, distance,
-                             base.camera.fov_degrees, base.camera.ortho_height);
-  } else if (p.name == "zoom") {
-    if (!(v > 0)) throw Error(fmt::format("--param zoom: {} must be > 0", v));
-    s.camera.ortho_height = base.camera.ortho_height / v;
-    if (!base.camera.orthographic())
-      s.camera.fov_degrees = 2.0 * std::atan(std::tan(base.camera.fov_degrees * M_PI / 360.0) / v) * 180.0 / M_PI;
+  if (p.name == "azimuth" || p.name == "elevation" || p.name == "zoom") {
+    OrbitView view = orbitViewOf(base.camera);
+    (p.name == "azimuth" ? view.azimuth : p.name == "elevation" ? view.elevation : view.zoom) = v;
+    if (p.name == "zoom" && !(v > 0)) throw Error(fmt::format("--param zoom: {} must be > 0", v));
+    s.camera = orbitCamera(base.camera, view);
   } else if (p.name == "step") {
     if (!(v > 0)) throw Error(fmt::format("--param step: {} must be > 0", v));
     s.step_voxels = v;

@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
 #include <glm/geometric.hpp>
 #include <numbers>
@@ -23,6 +24,31 @@ Camera Camera::orbit(double azimuth_deg, double elevation_deg, double distance, 
                                        : glm::dvec3(0.0, 0.0, 1.0);
   c.fov_degrees = fov_deg;
   c.ortho_height = ortho_height;
+  return c;
+}
+
+OrbitView orbitViewOf(const Camera& base) {
+  const glm::dvec3 offset = base.eye - base.target;
+  const double distance = glm::length(offset);
+  if (!(distance > 0)) throw Error("camera: eye and target coincide");
+  constexpr double deg = 180.0 / std::numbers::pi;
+  return {std::atan2(offset.y, offset.x) * deg,
+          std::asin(std::clamp(offset.z / distance, -1.0, 1.0)) * deg, 1.0};
+}
+
+Camera orbitCamera(const Camera& base, const OrbitView& view) {
+  if (!(view.zoom > 0) || !std::isfinite(view.zoom))
+    throw Error(fmt::format("camera: zoom {} must be > 0", view.zoom));
+  const double distance = glm::length(base.eye - base.target);
+  Camera c = Camera::orbit(view.azimuth, view.elevation, distance, base.fov_degrees,
+                   base.ortho_height / view.zoom);
+  c.eye += base.target;
+  c.target = base.target;
+  if (!base.orthographic()) {
+    // Perspective: zoom narrows the view as it shrinks an orthographic one.
+    constexpr double deg = std::numbers::pi / 180.0;
+    c.fov_degrees = 2.0 * std::atan(std::tan(0.5 * base.fov_degrees * deg) / view.zoom) / deg;
+  }
   return c;
 }
 

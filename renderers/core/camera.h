@@ -24,6 +24,17 @@ struct Camera {
   bool orthographic() const { return fov_degrees <= 0.0; }
 };
 
+// A view of a base camera by orbit angles about its target, at its distance, with a zoom relative
+// to its framing (the sweep's and the viewer's views): one formula for every caller, so a view
+// at the base camera's own angles and zoom 1 frames as the base camera does.
+struct OrbitView {
+  double azimuth = 0.0, elevation = 0.0;  // degrees: about +z, and from the xy-plane
+  double zoom = 1.0;                      // > 0; 2 shows half the height
+};
+OrbitView orbitViewOf(const Camera& base);
+// Throws svr::Error for a zoom that is not > 0 and finite.
+Camera orbitCamera(const Camera& base, const OrbitView& view);
+
 // Rays for a width×height image; one instance per render, cheap to query per pixel.
 class RayGenerator {
  public:

@@ -1,0 +1,108 @@
+// `svr view SCENE`: the scene served to a browser for interactive relighting and orbiting
+// (viewer/, docs/viewer.md).
+
+#include <CLI/CLI.hpp>
+#include <fmt/format.h>
+#include <fmt/ranges.h>
+
+#include <csignal>
+#include <cstdio>
+#include <memory>
+#include <thread>
+#include <unistd.h>
+
+#include "harness/command.h"
+#include "renderers/registry.h"
+#include "spectral/error.h"
+
+#ifdef SVR_HAVE_VIEWER
+#include "viewer/view_server.h"
+#include "viewer/view_session.h"
+#endif
+
+namespace svr {
+
+namespace {
+
+struct ViewCommandOptions {
+  std::string scene, host = "127.0.0.1", renderer = "shearwarp", model;
+  std::vector<std::string> options;
+  int port = 8765;
+  bool read_only = false, quiet = false;
+};
+
+#ifdef SVR_HAVE_VIEWER
+// Ctrl-C or SIGTERM while serving: the handler only writes a byte to a pipe (all a signal
+// handler may safely do); a thread waiting on it stops the server, and the command returns 0.
+// Before serving, while the scene loads, the signals keep their usual effect.
+int g_stop_pipe[2] = {-1, -1};
+extern "C" void onStopSignal(int) {
+  const char byte = 1;
+  [[maybe_unused]] const auto n = ::write(g_stop_pipe[1], &byte, 1);
+}
+
+int runView(const ViewCommandOptions& o, const std::string& data_dir) {
+  if (o.port < 0 || o.port > 65535)
+    throw Error(fmt::format("view: --port {} is outside 0..65535", o.port));
+  ViewOptions vo{o.scene, o.renderer, o.model, data_dir, o.options, o.read_only};
+  ViewSession session(vo);
+  ViewServer server(session);
+  const int port = server.bind(o.host, o.port);
+  if (::pipe(g_stop_pipe) != 0) throw Error("view: cannot create the stop pipe");
+  std::thread stopper([&server] {
+    char byte = 0;
+    while (::read(g_stop_pipe[0], &byte, 1) < 0 && errno == EINTR) {}
+    server.stop();
+  });
+  std::signal(SIGINT, onStopSignal);
+  std::signal(SIGTERM, onStopSignal);
+  const auto& info = session.sceneInfo();
+  const std::string host = o.host.find(':') != std::string::npos ? "[" + o.host + "]" : o.host;
+  fmt::print("svr view: {} with {} ({}) at http://{}:{}/  (Ctrl-C stops)\n", o.scene,
+             info["renderer"].get<std::string>(), info["model"]["name"].get<std::string>(), host,
+             port);
+  std::fflush(stdout);
+  server.listen();
+  onStopSignal(0);  // listen() also returns when the socket fails: let the stopper end
+  stopper.join();
+  if (!o.quiet) fmt::print("svr view: stopped\n");
+  return 0;
+}
+#endif
+
+}  // namespace
+
+namespace commands {
+
+CommandEntry view() {
+  return {"view", "serve a scene to a browser: relight with the light dial, orbit and zoom",
+          [](CLI::App& sub, CommandContext& context) {
+            auto o = std::make_shared<ViewCommandOptions>();
+            sub.add_option("SCENE", o->scene, "scene JSON (see docs/scenes.md)")->required();
+            sub.add_option("--port", o->port, "TCP port (0: any free one)")->capture_default_str();
+            sub.add_option("--host", o->host,
+                           "address to listen on (loopback unless you say otherwise)")
+                ->capture_default_str();
+            sub.add_option("--renderer", o->renderer,
+                           fmt::format("backend: {}", fmt::join(rendererNames(), ", ")))
+                ->capture_default_str();
+            sub.add_option("--model", o->model,
+                           "colour model: rgb, factor:k, spectral:n or auto (default: the scene's)");
+            sub.add_option("--option", o->options, "backend option BACKEND.KEY=VALUE (repeatable)");
+            sub.add_flag("--read-only", o->read_only, "never write the scene file (no saved mixes)");
+            sub.add_flag("-q,--quiet", o->quiet, "say nothing but the URL");
+            addCacheFlag(sub);
+            sub.callback([o, &context] {
+#ifdef SVR_HAVE_VIEWER
+              context.status = runView(*o, context.data_dir);
+#else
+              throw Error("view: this svr was built without cpp-httplib (install "
+                          "libcpp-httplib-dev, then configure and build again)");
+#endif
+            });
+          }};
+}
+
+}  // namespace commands
+
+}  // namespace svr

@@ -1,0 +1,69 @@
+#include "viewer/standalone_page.h"
+
+#include <fmt/format.h>
+#include <openssl/evp.h>
+
+#include <vector>
+
+#include "spectral/error.h"
+#include "viewer/frame_format.h"
+#include "viewer/web_assets.h"
+
+namespace svr {
+
+namespace {
+
+std::string asset(const std::string& path) {
+  const WebAsset* a = findWebAsset(path);
+  if (!a) throw Error(fmt::format("render --html: the page's '{}' is not built in", path));
+  // Inlined into <script> or <style>, a closing tag inside would end the element early.
+  if (a->bytes.find("</script") != std::string_view::npos || a->bytes.find("</style") != std::string_view::npos)
+    throw Error(fmt::format("render --html: the page's '{}' contains a closing tag", path));
+  return std::string(a->bytes);
+}
+
+std::string base64(const std::string& bytes) {
+  std::string out(4 * ((bytes.size() + 2) / 3), '\0');
+  const int n = EVP_EncodeBlock(reinterpret_cast<unsigned char*>(out.data()),
+                                reinterpret_cast<const unsigned char*>(bytes.data()),
+                                static_cast<int>(bytes.size()));
+  out.resize(static_cast<size_t>(n));
+  return out;
+}
+
+void replaceOnce(std::string& text, const std::string& from, const std::string& to) {
+  const auto at = text.find(from);
+  if (at == std::string::npos)
+    throw Error(fmt::format("render --html: the page has no '{}' to fill", from));
+  text.replace(at, from.size(), to);
+}
+
+// Inside <script>, "</" would end the element: JSON escapes it as "<\/".
+std::string scriptSafe(std::string json) {
+  for (size_t at = 0; (at = json.find("</", at)) != std::string::npos; at += 3) json.replace(at, 2, "<\\/");
+  return json;
+}
+
+}  // namespace
+
+std::string standalonePage(const nlohmann::json& scene_info, const LightIndependentImage& image) {
+  std::string page = asset("index.html");
+  replaceOnce(page, R"(<link rel="stylesheet" href="viewer.css">)",
+              "<style>\n" + asset("viewer.css") + "</style>");
+  const nlohmann::json header = {{"width", image.width()},
+                                 {"height", image.height()},
+                                 {"channels", image.channels()},
+                                 {"t_channels", image.transmittanceChannels()}};
+  const std::string data = fmt::format(
+      "<script>\nwindow.SVR_EMBEDDED = {{info: {}, frame: \"{}\"}};\n</script>\n",
+      scriptSafe(scene_info.dump()), base64(encodeFrame(image, header)));
+  for (const char* script : {"mixer.js", "relighter.js", "viewer.js"}) {
+    const std::string tag = fmt::format(R"(<script src="{}"></script>)", script);
+    replaceOnce(page, tag,
+                (std::string(script) == "mixer.js" ? data : "") + "<script>\n" + asset(script) +
+                    "</script>");
+  }
+  return page;
+}
+
+}  // namespace svr

@@ -1,0 +1,190 @@
+#include "viewer/view_server.h"
+
+#include <fmt/format.h>
+#include <httplib.h>
+
+#include <sstream>
+
+#include "spectral/error.h"
+#include "spectral/light_mixer.h"
+#include "viewer/frame_format.h"
+#include "viewer/view_params.h"
+#include "viewer/web_assets.h"
+
+namespace svr {
+
+namespace {
+
+constexpr size_t kMaxBody = 64 * 1024;  // a saved mix is a few hundred bytes
+
+void answer(httplib::Response& res, int status, const std::string& message) {
+  res.status = status;
+  res.set_content(nlohmann::json{{"error", message}}.dump() + "\n", "application/json");
+}
+
+void answerJson(httplib::Response& res, const nlohmann::json& body) {
+  res.set_header("Cache-Control", "no-store");
+  res.set_content(body.dump() + "\n", "application/json");
+}
+
+// Runs a handler, turning what it throws into the answer the API promises: BadRequest → 400,
+// svr::Error (a render or file that failed) → `error_status` with the reason.
+template <class F>
+void guarded(httplib::Response& res, int error_status, F&& f) {
+  try {
+    f();
+  } catch (const BadRequest& e) {
+    answer(res, 400, e.what());
+  } catch (const Error& e) {
+    answer(res, error_status, e.what());
+  } catch (const std::bad_alloc&) {
+    answer(res, 503, "out of memory for this request");
+  } catch (const std::exception& e) {
+    answer(res, 500, e.what());
+  }
+}
+
+// nodes=x:y:on,x:y:on,… (on is 0 or 1)
+std::vector<std::array<double, 3>> parseNodes(const std::string& text) {
+  std::vector<std::array<double, 3>> nodes;
+  std::stringstream ss(text);
+  std::string item;
+  while (std::getline(ss, item, ',')) {
+    std::array<double, 3> n{};
+    std::stringstream fields(item);
+    std::string f;
+    int i = 0;
+    while (std::getline(fields, f, ':')) {
+      if (i == 3) break;
+      n[i] = parseFiniteNumber(f, fmt::format("nodes item '{}'", item.substr(0, 40)));
+      ++i;
+    }
+    if (i != 3 || (n[2] != 0 && n[2] != 1) || std::abs(n[0]) > 1e6 || std::abs(n[1]) > 1e6)
+      throw BadRequest(fmt::format("nodes item '{}' is not x:y:on with |x|,|y| ≤ 1e6 and on 0 or 1",
+                                   item.substr(0, 40)));
+    nodes.push_back(n);
+    if (nodes.size() > 64) throw BadRequest("nodes: more than 64 lights");
+  }
+  if (nodes.empty()) throw BadRequest("nodes is empty");
+  return nodes;
+}
+
+}  // namespace
+
+ViewServer::ViewServer(ViewSession& session)
+    : session_(session), server_(std::make_unique<httplib::Server>()) {
+  server_->set_payload_max_length(kMaxBody);
+  routes();
+}
+
+ViewServer::~ViewServer() = default;
+
+int ViewServer::bind(const std::string& host, int port) {
+  const int bound = port == 0 ? server_->bind_to_any_port(host) : server_->bind_to_port(host, port) ? port : -1;
+  if (bound <= 0)
+    throw Error(fmt::format("view: cannot listen on {}:{} (in use, or not an address of this "
+                            "machine)", host, port));
+  return bound;
+}
+
+void ViewServer::listen() { server_->listen_after_bind(); }
+void ViewServer::stop() { server_->stop(); }
+
+void ViewServer::routes() {
+  httplib::Server& s = *server_;
+  s.Get("/api/scene", [this](const httplib::Request& req, httplib::Response& res) {
+    guarded(res, 500, [&] {
+      QueryParams(req.params, {});
+      answerJson(res, session_.sceneInfo());
+    });
+  });
+  s.Get("/api/light", [this](const httplib::Request& req, httplib::Response& res) {
+    guarded(res, 404, [&] {
+      const QueryParams q(req.params, {"name"});
+      if (!q.has("name")) throw BadRequest("parameter 'name' is missing");
+      answerJson(res, session_.libraryLight(q.text("name", "", 128)));
+    });
+  });
+  s.Get("/api/mixer-weights", [this](const httplib::Request& req, httplib::Response& res) {
+    guarded(res, 400, [&] {
+      const QueryParams q(req.params, {"x", "y", "nodes"});
+      std::vector<std::array<double, 3>> nodes;
+      if (q.has("nodes")) {
+        nodes = parseNodes(q.text("nodes", "", 4096));
+      } else {
+        const int n = static_cast<int>(session_.sceneInfo()["lights"].size());
+        for (const auto& node : LightMixer::regularPolygon(n).nodes) nodes.push_back({node.x, node.y, 1.0});
+      }
+      const auto w = ViewSession::mixerWeights(nodes, q.number("x", 0, -1e6, 1e6),
+                                               q.number("y", 0, -1e6, 1e6));
+      answerJson(res, {{"weights", w}});
+    });
+  });
+  s.Get("/api/render", [this](const httplib::Request& req, httplib::Response& res) {
+    guarded(res, 500, [&] {
+      const QueryParams q(req.params, {"azimuth", "elevation", "zoom", "width", "height"});
+      const auto& info = session_.sceneInfo();
+      const OrbitView& v0 = session_.initialView();
+      ViewRequest r;
+      r.view.azimuth = q.number("azimuth", v0.azimuth, -3600, 3600);
+      r.view.elevation = q.number("elevation", v0.elevation, -90, 90);
+      r.view.zoom = q.number("zoom", 1.0, 0.01, 100);
+      r.width = q.integer("width", info["width"], 1, ViewSession::kMaxSide);
+      r.height = q.integer("height", info["height"], 1, ViewSession::kMaxSide);
+      const auto frame = session_.render(r);
+      if (!frame) {
+        answer(res, 409, "superseded by a newer view request");
+        return;
+      }
+      const nlohmann::json header = {
+          {"width", frame->image.width()}, {"height", frame->image.height()},
+          {"channels", frame->image.channels()},
+          {"t_channels", frame->image.transmittanceChannels()},
+          {"render_ms", frame->render_ms}, {"sequence", frame->sequence},
+          {"azimuth", r.view.azimuth}, {"elevation", r.view.elevation}, {"zoom", r.view.zoom}};
+      res.set_header("Cache-Control", "no-store");
+      res.set_content(encodeFrame(frame->image, header), "application/octet-stream");
+    });
+  });
+  s.Post("/api/mixes", [this](const httplib::Request& req, httplib::Response& res) {
+    guarded(res, 400, [&] {
+      const QueryParams q(req.params, {"name"});
+      if (session_.readOnly()) {
+        answer(res, 403, "the server was started with --read-only: mixes are not saved");
+        return;
+      }
+      if (!q.has("name")) throw BadRequest("parameter 'name' is missing");
+      const auto body = nlohmann::json::parse(req.body, nullptr, false);
+      if (body.is_discarded() || !body.is_object() || !body.contains("weights") ||
+          !body["weights"].is_object())
+        throw BadRequest("the body must be JSON {\"weights\": {\"LIGHT\": WEIGHT, …}}");
+      std::vector<std::pair<std::string, double>> weights;
+      for (const auto& [light, w] : body["weights"].items()) {
+        if (!w.is_number())
+          throw BadRequest(fmt::format("weight of light '{}' is not a number", light.substr(0, 64)));
+        weights.emplace_back(light, w.get<double>());
+      }
+      session_.saveMix(q.text("name", "", 64), weights);
+      answerJson(res, {{"saved", q.text("name", "", 64)}, {"file", session_.options().scene}});
+    });
+  });
+  // The page's files; anything else is 404 (nothing is served from the file system, so no
+  // path can reach outside the page).
+  s.Get(R"(/([A-Za-z0-9_.-]*))", [](const httplib::Request& req, httplib::Response& res) {
+    std::string path = req.matches[1];
+    if (path.empty()) path = "index.html";
+    if (!req.params.empty()) return answer(res, 400, "the page's files take no parameters");
+    const WebAsset* asset = findWebAsset(path);
+    if (!asset) return answer(res, 404, fmt::format("no such path '/{}'", path));
+    res.set_content(std::string(asset->bytes), std::string(asset->content_type).c_str());
+  });
+  s.set_error_handler([](const httplib::Request& req, httplib::Response& res) {
+    if (!res.body.empty()) return;  // a handler's own answer
+    std::string path = req.path.substr(0, 80);
+    for (char& c : path) if (c < 0x20 || c >= 0x7f) c = '?';
+    answer(res, res.status, res.status == 404 ? fmt::format("no such path '{}'", path)
+                                              : fmt::format("request refused (HTTP {})", res.status));
+  });
+}
+
+}  // namespace svr

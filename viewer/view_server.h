@@ -1,0 +1,35 @@
+#pragma once
+// The HTTP face of a ViewSession (cpp-httplib): the page's files, and a small JSON + binary API
+// (docs/viewer.md). Every bad request is answered 4xx with {"error": message naming the
+// parameter and value}; a render that fails is answered 500 with its reason; the server keeps
+// serving either way.
+
+#include <memory>
+#include <string>
+
+#include "viewer/view_session.h"
+
+namespace httplib {
+class Server;
+}
+
+namespace svr {
+
+class ViewServer {
+ public:
+  explicit ViewServer(ViewSession& session);
+  ~ViewServer();
+
+  // Binds host:port (port 0: any free one) and returns the port; svr::Error when it cannot.
+  int bind(const std::string& host, int port);
+  // Serves until stop() (from another thread).
+  void listen();
+  void stop();
+
+ private:
+  void routes();
+  ViewSession& session_;
+  std::unique_ptr<httplib::Server> server_;
+};
+
+}  // namespace svr

@@ -1,0 +1,116 @@
+#include "viewer/view_session.h"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstring>
+#include <fstream>
+#include <regex>
+#include <sstream>
+
+#include "renderers/core/scene_render.h"
+#include "renderers/registry.h"
+#include "spectral/atomic_file.h"
+#include "spectral/error.h"
+#include "spectral/light_mixer.h"
+
+namespace svr {
+
+ViewSession::ViewSession(const ViewOptions& options)
+    : options_(options),
+      grid_(WavelengthGrid::standard()),
+      library_(SpectrumLibrary::load(options.data_dir, grid_)),
+      observer_(Observer::cie1931(options.data_dir, grid_)),
+      scene_(loadScene(options.scene, library_)) {
+  renderer_ = makeRenderer(options.renderer);
+  checkRendererOptions(scene_.renderer_options, options.scene + ": render.options");
+  for (const auto& option : options.options)
+    applyOptionAssignment(scene_.renderer_options, option, "--option");
+  model_ = makeSceneModel(options.model.empty() ? scene_.model : options.model, scene_, observer_);
+  classified_ = std::make_unique<ClassifiedVolume>(classifyScene(scene_, *model_.model));
+  const ColourModel& model = *model_.model;
+  const int planes = model.imageChannels() + classified_->t_channels;
+  if (planes > kMaxPlanes)
+    throw Error(fmt::format("view: model {} makes {} image planes; the viewer relights at most {}",
+                            model.name(), planes, kMaxPlanes));
+  initial_view_ = orbitViewOf(scene_.camera);
+
+  scene_info_ = pageSceneInfo(lightContext(), scene_, model_, renderer_->name(), initial_view_);
+  scene_info_["max_side"] = kMaxSide;
+  scene_info_["read_only"] = options.read_only;
+}
+
+PageLightContext ViewSession::lightContext() const {
+  return {*model_.model, observer_, scene_.background, classified_->t_channels};
+}
+
+nlohmann::json ViewSession::libraryLight(const std::string& name) const {
+  return pageLight(lightContext(), name, library_.get(name));
+}
+
+std::vector<double> ViewSession::mixerWeights(const std::vector<std::array<double, 3>>& nodes,
+                                              double x, double y) {
+  LightMixer mixer;
+  for (const auto& n : nodes) mixer.nodes.push_back({n[0], n[1], n[2] != 0.0});
+  return mixer.weights(x, y);
+}
+
+std::optional<ViewFrame> ViewSession::render(const ViewRequest& request) {
+  const std::uint64_t mine = ++latest_;
+  std::lock_guard lock(render_mutex_);
+  if (latest_.load() != mine) return std::nullopt;  // a newer view is waiting behind this one
+  RenderRequest r = sceneRequest(scene_, *classified_);
+  r.camera = orbitCamera(scene_.camera, request.view);
+  r.width = request.width;
+  r.height = request.height;
+  const auto t0 = std::chrono::steady_clock::now();
+  LightIndependentImage image = renderer_->render(r, nullptr);
+  const double ms =
+      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+  if (latest_.load() != mine) return std::nullopt;
+  return ViewFrame{image.withStorage(SampleStorage::kHalf), ms, mine};
+}
+
+void ViewSession::saveMix(const std::string& name,
+                          const std::vector<std::pair<std::string, double>>& weights) {
+  if (options_.read_only) throw Error("view: started with --read-only: mixes are not saved");
+  static const std::regex kName("[A-Za-z0-9_.-]{1,64}");
+  if (!std::regex_match(name, kName))
+    throw Error(fmt::format("mix name '{}' must be 1–64 letters, digits, '_', '-' or '.'", name));
+  if (weights.empty()) throw Error("mix has no weights");
+  double sum = 0;
+  for (const auto& [light, w] : weights) {
+    if (!std::isfinite(w) || w < 0)
+      throw Error(fmt::format("weight {} of light '{}' must be finite and ≥ 0", w, light));
+    sum += w;
+  }
+  if (!(sum > 0)) throw Error("mix weights are all 0");
+
+  std::lock_guard lock(file_mutex_);
+  std::ifstream in(options_.scene);
+  std::stringstream text;
+  text << in.rdbuf();
+  nlohmann::ordered_json doc = nlohmann::ordered_json::parse(text.str(), nullptr, false);
+  if (!in || doc.is_discarded() || !doc.is_object())
+    throw Error(fmt::format("{}: cannot read the scene file back to add the mix", options_.scene));
+  nlohmann::ordered_json& lights = doc["lights"];
+  nlohmann::ordered_json mix = nlohmann::ordered_json::object();
+  for (const auto& [light, w] : weights) {
+    const bool in_scene = std::any_of(scene_.lights.begin(), scene_.lights.end(),
+                                      [&](const SceneLight& l) { return l.name == light; });
+    if (!in_scene) {
+      library_.get(light);  // an unknown name fails here, naming close ones
+      const bool listed = std::any_of(lights.begin(), lights.end(), [&](const auto& l) {
+        return l.is_object() && l.value("name", "") == light;
+      });
+      if (!listed) lights.push_back({{"name", light}, {"library", light}});
+    }
+    mix[light] = w;
+  }
+  doc["light_mixes"][name] = mix;
+  writeTextAtomically(options_.scene, doc.dump(2) + "\n");
+}
+
+}  // namespace svr

@@ -1,0 +1,95 @@
+#pragma once
+// What `svr view` serves (issue 20): one scene loaded, classified and kept for the server's
+// life, its lights as relighting matrices, and renders of any orbit view of it as the
+// light-independent image. Thread-safe: the HTTP server calls it from its worker threads.
+//
+// Renders run one at a time (a renderer uses every core). A newer view request supersedes the
+// older ones: a request still waiting when a newer one arrives is answered "superseded" without
+// rendering, and one whose frame finishes after a newer request arrived is answered so too (its
+// frame is dropped: the newer view is already on its way). Backends have no cancellation
+// points, so a frame that has started runs to its end; frames take tens of milliseconds.
+
+#include <atomic>
+#include <cstdint>
+#include <memory>
+#include <mutex>
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "renderers/core/camera.h"
+#include "renderers/core/classification.h"
+#include "renderers/core/renderer.h"
+#include "renderers/core/scene.h"
+#include "renderers/core/scene_model.h"
+#include "spectral/colorimetry.h"
+#include "spectral/light_independent_image.h"
+#include "spectral/spectrum_library.h"
+#include "viewer/page_data.h"
+
+namespace svr {
+
+struct ViewOptions {
+  std::string scene, renderer = "shearwarp", model, data_dir;
+  std::vector<std::string> options;  // BACKEND.KEY=VALUE
+  bool read_only = false;            // refuse to save mixes into the scene file
+};
+
+struct ViewRequest {
+  OrbitView view;
+  int width = 0, height = 0;
+};
+
+struct ViewFrame {
+  LightIndependentImage image;  // half storage
+  double render_ms = 0;
+  std::uint64_t sequence = 0;   // the request's place in arrival order
+};
+
+class ViewSession {
+ public:
+  // Limits on what one request may ask for, so that memory stays bounded.
+  static constexpr int kMaxSide = 2048;
+  static constexpr int kMaxPlanes = 32;
+
+  explicit ViewSession(const ViewOptions& options);
+
+  // The scene's lights (each as a 3 × planes matrix to linear sRGB, unit luminance, the
+  // backdrop folded in), its mixes, the model and the initial view, as /api/scene gives them.
+  const nlohmann::json& sceneInfo() const { return scene_info_; }
+  // A library spectrum as a light: {"name", "matrix"}; svr::Error for an unknown name.
+  nlohmann::json libraryLight(const std::string& name) const;
+  // LightMixer's weights for a handle at (x, y) with these nodes (x, y, on).
+  static std::vector<double> mixerWeights(const std::vector<std::array<double, 3>>& nodes,
+                                          double x, double y);
+  // The frame, or empty when a newer request superseded this one. svr::Error when it fails.
+  std::optional<ViewFrame> render(const ViewRequest& request);
+  // Adds the mix {light name: weight} to the scene file as light_mixes[name], adding library
+  // lights the scene lacks to its lights. svr::Error for bad names or weights.
+  void saveMix(const std::string& name, const std::vector<std::pair<std::string, double>>& weights);
+
+  bool readOnly() const { return options_.read_only; }
+  const ViewOptions& options() const { return options_; }
+  const OrbitView& initialView() const { return initial_view_; }
+
+ private:
+  PageLightContext lightContext() const;
+
+  ViewOptions options_;
+  WavelengthGrid grid_;
+  SpectrumLibrary library_;
+  Observer observer_;
+  Scene scene_;
+  SceneModel model_;
+  std::unique_ptr<ClassifiedVolume> classified_;
+  std::unique_ptr<Renderer> renderer_;
+  OrbitView initial_view_;
+  nlohmann::json scene_info_;
+
+  std::mutex render_mutex_;
+  std::atomic<std::uint64_t> latest_{0};
+  std::mutex file_mutex_;
+};
+
+}  // namespace svr
