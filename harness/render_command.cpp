@@ -204,10 +204,11 @@ int runRender(const RenderOptions& o) {
     writeSrgbPng(out.rgb, image.width(), image.height(), (fs::path(o.out_dir) / out.file).string());
   if (o.html) {
     const PageLightContext context{model, observer, scene.background, image.transmittanceChannels()};
-    nlohmann::json info =
-        pageSceneInfo(context, scene, chosen, renderer->name(), orbitViewOf(scene.camera));
-    info["static"] = true;
-    writeTextAtomically((fs::path(o.out_dir) / "view.html").string(), standalonePage(info, image));
+    const SampleChoice samples = chooseSamples(context, scene, image);
+    const nlohmann::json info = pageSceneInfo(context, scene, chosen, renderer->name(),
+                                              orbitViewOf(scene.camera), samples);
+    writeTextAtomically((fs::path(o.out_dir) / "view.html").string(),
+                        standalonePage(info, image.withStorage(samples.storage)));
   }
   const nlohmann::json report = renderReport(o, scene, *renderer, chosen, image, outputs, t, notes);
   writeTextAtomically((fs::path(o.out_dir) / "render.json").string(), report.dump(1) + "\n");

@@ -5,16 +5,14 @@
 
 namespace svr {
 
-std::string encodeFrame(const LightIndependentImage& image, const nlohmann::json& header) {
+std::string encodeFrame(const LightIndependentImage& image, nlohmann::json header) {
+  const bool half = image.storage() == SampleStorage::kHalf;
+  header["samples"] = half ? "half" : "float";
   std::string json = header.dump();
   while ((8 + json.size()) % 4 != 0) json += ' ';
-  const LightIndependentImage half = image.storage() == SampleStorage::kHalf
-                                         ? LightIndependentImage()
-                                         : image.withStorage(SampleStorage::kHalf);
-  const LightIndependentImage& h = image.storage() == SampleStorage::kHalf ? image : half;
-  const size_t plane_bytes = h.pixels() * 2;
+  const size_t plane_bytes = image.pixels() * (half ? 2 : 4);
   std::string out;
-  out.reserve(8 + json.size() + plane_bytes * h.planes());
+  out.reserve(8 + json.size() + plane_bytes * image.planes());
   out += "SVRI";
   const std::uint32_t n = static_cast<std::uint32_t>(json.size());
   for (int b = 0; b < 4; ++b) out += static_cast<char>((n >> (8 * b)) & 0xff);
@@ -22,8 +20,8 @@ std::string encodeFrame(const LightIndependentImage& image, const nlohmann::json
   // The format is little-endian, as are the hosts svr builds on and every browser's typed
   // arrays: the planes go out as stored.
   static_assert(std::endian::native == std::endian::little);
-  for (int p = 0; p < h.planes(); ++p)
-    out.append(static_cast<const char*>(h.planeData(p)), plane_bytes);
+  for (int p = 0; p < image.planes(); ++p)
+    out.append(static_cast<const char*>(image.planeData(p)), plane_bytes);
   return out;
 }
 

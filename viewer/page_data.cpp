@@ -1,5 +1,8 @@
 #include "viewer/page_data.h"
 
+#include <algorithm>
+#include <cstdlib>
+
 #include "spectral/light_mixer.h"
 #include "spectral/post_illumination.h"
 
@@ -23,9 +26,28 @@ nlohmann::json pageLight(const PageLightContext& context, const std::string& nam
   return {{"name", name}, {"matrix", rows}};
 }
 
+SampleChoice chooseSamples(const PageLightContext& context, const Scene& scene,
+                           const LightIndependentImage& image) {
+  const LightIndependentImage half = image.withStorage(SampleStorage::kHalf);
+  const LightIndependentImage full = image.withStorage(SampleStorage::kFloat);
+  PostIlluminator post(context.model);
+  if (context.background) post.setBackground(context.model.project(*context.background));
+  std::vector<std::uint8_t> a(3 * image.pixels()), b(3 * image.pixels());
+  SampleChoice choice;
+  for (const auto& light : scene.lights) {
+    post.setLight(context.model.project(context.observer.unitLuminance(light.spectrum)));
+    post.relightSrgb8(full, a);
+    post.relightSrgb8(half, b);
+    for (size_t i = 0; i < a.size(); ++i)
+      choice.half_code_error = std::max(choice.half_code_error, std::abs(int(a[i]) - int(b[i])));
+  }
+  choice.storage = choice.half_code_error <= 1 ? SampleStorage::kHalf : SampleStorage::kFloat;
+  return choice;
+}
+
 nlohmann::json pageSceneInfo(const PageLightContext& context, const Scene& scene,
                              const SceneModel& chosen, const std::string& renderer,
-                             const OrbitView& view) {
+                             const OrbitView& view, const SampleChoice& samples) {
   nlohmann::json lights = nlohmann::json::array();
   for (const auto& light : scene.lights) lights.push_back(pageLight(context, light.name, light.spectrum));
   nlohmann::json mixes = nlohmann::json::array();
@@ -50,6 +72,8 @@ nlohmann::json pageSceneInfo(const PageLightContext& context, const Scene& scene
       {"lights", lights},
       {"mixes", mixes},
       {"mixer_power", LightMixer{}.power},
+      {"samples", samples.storage == SampleStorage::kHalf ? "half" : "float"},
+      {"half_code_error", samples.half_code_error},
   };
 }
 

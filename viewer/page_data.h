@@ -13,6 +13,7 @@
 #include "renderers/core/scene.h"
 #include "renderers/core/scene_model.h"
 #include "spectral/colorimetry.h"
+#include "spectral/light_independent_image.h"
 
 namespace svr {
 
@@ -26,8 +27,19 @@ struct PageLightContext {
 nlohmann::json pageLight(const PageLightContext& context, const std::string& name,
                          const Spectrum& spectrum);
 
+// The samples the page should be sent: half floats halve the bytes, but where a model's light
+// matrices cancel large coefficients (designed lights) their rounding shows. Half is chosen when
+// relighting the half image under every scene light stays within one code value of the float
+// image; the largest difference found is returned beside the choice.
+struct SampleChoice {
+  SampleStorage storage = SampleStorage::kHalf;
+  int half_code_error = 0;
+};
+SampleChoice chooseSamples(const PageLightContext& context, const Scene& scene,
+                           const LightIndependentImage& image);
+
 nlohmann::json pageSceneInfo(const PageLightContext& context, const Scene& scene,
                              const SceneModel& chosen, const std::string& renderer,
-                             const OrbitView& view);
+                             const OrbitView& view, const SampleChoice& samples);
 
 }  // namespace svr

@@ -16,10 +16,15 @@ namespace {
 std::string asset(const std::string& path) {
   const WebAsset* a = findWebAsset(path);
   if (!a) throw Error(fmt::format("render --html: the page's '{}' is not built in", path));
-  // Inlined into <script> or <style>, a closing tag inside would end the element early.
-  if (a->bytes.find("</script") != std::string_view::npos || a->bytes.find("</style") != std::string_view::npos)
-    throw Error(fmt::format("render --html: the page's '{}' contains a closing tag", path));
   return std::string(a->bytes);
+}
+
+// A script or style sheet to inline: a closing tag inside would end its element early.
+std::string inlined(const std::string& path) {
+  std::string text = asset(path);
+  if (text.find("</script") != std::string::npos || text.find("</style") != std::string::npos)
+    throw Error(fmt::format("render --html: the page's '{}' contains a closing tag", path));
+  return text;
 }
 
 std::string base64(const std::string& bytes) {
@@ -49,18 +54,19 @@ std::string scriptSafe(std::string json) {
 std::string standalonePage(const nlohmann::json& scene_info, const LightIndependentImage& image) {
   std::string page = asset("index.html");
   replaceOnce(page, R"(<link rel="stylesheet" href="viewer.css">)",
-              "<style>\n" + asset("viewer.css") + "</style>");
+              "<style>\n" + inlined("viewer.css") + "</style>");
   const nlohmann::json header = {{"width", image.width()},
                                  {"height", image.height()},
                                  {"channels", image.channels()},
-                                 {"t_channels", image.transmittanceChannels()}};
+                                 {"t_channels", image.transmittanceChannels()},
+                                 {"render_ms", 0}};
   const std::string data = fmt::format(
       "<script>\nwindow.SVR_EMBEDDED = {{info: {}, frame: \"{}\"}};\n</script>\n",
       scriptSafe(scene_info.dump()), base64(encodeFrame(image, header)));
   for (const char* script : {"mixer.js", "relighter.js", "viewer.js"}) {
     const std::string tag = fmt::format(R"(<script src="{}"></script>)", script);
     replaceOnce(page, tag,
-                (std::string(script) == "mixer.js" ? data : "") + "<script>\n" + asset(script) +
+                (std::string(script) == "mixer.js" ? data : "") + "<script>\n" + inlined(script) +
                     "</script>");
   }
   return page;

@@ -122,7 +122,7 @@ void ViewServer::routes() {
   });
   s.Get("/api/render", [this](const httplib::Request& req, httplib::Response& res) {
     guarded(res, 500, [&] {
-      const QueryParams q(req.params, {"azimuth", "elevation", "zoom", "width", "height"});
+      const QueryParams q(req.params, {"azimuth", "elevation", "zoom", "width", "height", "samples"});
       const auto& info = session_.sceneInfo();
       const OrbitView& v0 = session_.initialView();
       ViewRequest r;
@@ -131,6 +131,12 @@ void ViewServer::routes() {
       r.view.zoom = q.number("zoom", 1.0, 0.01, 100);
       r.width = q.integer("width", info["width"], 1, ViewSession::kMaxSide);
       r.height = q.integer("height", info["height"], 1, ViewSession::kMaxSide);
+      if (q.has("samples")) {
+        const std::string samples = q.text("samples", "", 8);
+        if (samples != "half" && samples != "float")
+          throw BadRequest(fmt::format("parameter samples='{}' is not half or float", samples));
+        r.samples = samples == "half" ? SampleStorage::kHalf : SampleStorage::kFloat;
+      }
       const auto frame = session_.render(r);
       if (!frame) {
         answer(res, 409, "superseded by a newer view request");
@@ -173,10 +179,17 @@ void ViewServer::routes() {
   s.Get(R"(/([A-Za-z0-9_.-]*))", [](const httplib::Request& req, httplib::Response& res) {
     std::string path = req.matches[1];
     if (path.empty()) path = "index.html";
-    if (!req.params.empty()) return answer(res, 400, "the page's files take no parameters");
     const WebAsset* asset = findWebAsset(path);
     if (!asset) return answer(res, 404, fmt::format("no such path '/{}'", path));
-    res.set_content(std::string(asset->bytes), std::string(asset->content_type).c_str());
+    guarded(res, 400, [&] {
+      // The page takes ?relight=webgl2|js|auto (viewer/web/relighter.js); its files take nothing.
+      const QueryParams q(req.params, path == "index.html" ? std::initializer_list<const char*>{"relight"}
+                                                           : std::initializer_list<const char*>{});
+      const std::string relight = q.text("relight", "auto", 16);
+      if (relight != "auto" && relight != "webgl2" && relight != "js")
+        throw BadRequest(fmt::format("parameter relight='{}' is not auto, webgl2 or js", relight));
+      res.set_content(std::string(asset->bytes), std::string(asset->content_type).c_str());
+    });
   });
   s.set_error_handler([](const httplib::Request& req, httplib::Response& res) {
     if (!res.body.empty()) return;  // a handler's own answer

@@ -36,8 +36,12 @@ ViewSession::ViewSession(const ViewOptions& options)
     throw Error(fmt::format("view: model {} makes {} image planes; the viewer relights at most {}",
                             model.name(), planes, kMaxPlanes));
   initial_view_ = orbitViewOf(scene_.camera);
+  RenderRequest first = sceneRequest(scene_, *classified_);
+  first.camera = orbitCamera(scene_.camera, initial_view_);
+  samples_ = chooseSamples(lightContext(), scene_, renderer_->render(first, nullptr));
 
-  scene_info_ = pageSceneInfo(lightContext(), scene_, model_, renderer_->name(), initial_view_);
+  scene_info_ = pageSceneInfo(lightContext(), scene_, model_, renderer_->name(), initial_view_,
+                              samples_);
   scene_info_["max_side"] = kMaxSide;
   scene_info_["read_only"] = options.read_only;
 }
@@ -70,7 +74,7 @@ std::optional<ViewFrame> ViewSession::render(const ViewRequest& request) {
   const double ms =
       std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
   if (latest_.load() != mine) return std::nullopt;
-  return ViewFrame{image.withStorage(SampleStorage::kHalf), ms, mine};
+  return ViewFrame{image.withStorage(request.samples.value_or(samples_.storage)), ms, mine};
 }
 
 void ViewSession::saveMix(const std::string& name,

@@ -39,10 +39,11 @@ struct ViewOptions {
 struct ViewRequest {
   OrbitView view;
   int width = 0, height = 0;
+  std::optional<SampleStorage> samples;  // empty: the session's choice (chooseSamples)
 };
 
 struct ViewFrame {
-  LightIndependentImage image;  // half storage
+  LightIndependentImage image;  // in the storage asked for
   double render_ms = 0;
   std::uint64_t sequence = 0;   // the request's place in arrival order
 };
@@ -53,6 +54,8 @@ class ViewSession {
   static constexpr int kMaxSide = 2048;
   static constexpr int kMaxPlanes = 32;
 
+  // Loads, classifies, and renders the initial view once: that warms what the backend keeps
+  // per classification, and decides half or float samples (chooseSamples).
   explicit ViewSession(const ViewOptions& options);
 
   // The scene's lights (each as a 3 × planes matrix to linear sRGB, unit luminance, the
@@ -85,6 +88,7 @@ class ViewSession {
   std::unique_ptr<ClassifiedVolume> classified_;
   std::unique_ptr<Renderer> renderer_;
   OrbitView initial_view_;
+  SampleChoice samples_;
   nlohmann::json scene_info_;
 
   std::mutex render_mutex_;

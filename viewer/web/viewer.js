@@ -37,8 +37,9 @@ function parseFrame(buffer) {
   const header = JSON.parse(new TextDecoder().decode(bytes.subarray(8, 8 + n)));
   const planes = header.channels + header.t_channels;
   const count = planes * header.width * header.height;
-  if (8 + n + 2 * count > buffer.byteLength) throw new Error("frame is truncated");
-  return {...header, planes, data: new Uint16Array(buffer, 8 + n, count)};
+  const half = header.samples === "half";
+  if (8 + n + (half ? 2 : 4) * count > buffer.byteLength) throw new Error("frame is truncated");
+  return {...header, planes, data: half ? new Uint16Array(buffer, 8 + n, count) : new Float32Array(buffer, 8 + n, count)};
 }
 
 function base64ToBuffer(text) {
@@ -74,7 +75,7 @@ function relightNow() {
   const now = performance.now();
   stats.relights.push(now);
   while (stats.relights.length && stats.relights[0] < now - 1000) stats.relights.shift();
-  $("fps").textContent = stats.relights.length > 1 ? String(stats.relights.length) : "–";
+  $("fps").textContent = stats.relights.length > 1 ? `${stats.relights.length} (${relighter.kind})` : "–";
 }
 
 // Relights the current frame n times back to back, waiting for each: frames per second of the
@@ -240,7 +241,7 @@ let quarterInFlight = false, fullAbort = null, pendingView = null, viewStarted =
 
 function renderUrl(view, scale) {
   const w = Math.max(1, Math.round(state.size.width / scale)), h = Math.max(1, Math.round(state.size.height / scale));
-  return `api/render?azimuth=${view.azimuth}&elevation=${view.elevation}&zoom=${view.zoom}&width=${w}&height=${h}`;
+  return `api/render?azimuth=${view.azimuth}&elevation=${view.elevation}&zoom=${view.zoom}&width=${w}&height=${h}&samples=${state.samples}`;
 }
 
 async function fetchFrame(view, scale, signal) {
@@ -421,14 +422,16 @@ async function start() {
   state.info = embedded ? embedded.info : await (await fetch("api/scene")).json();
   const info = state.info;
   $("scene-name").textContent = info.scene.split("/").pop();
-  $("model").textContent = `${info.model.name} (k = ${info.model.k}: ${info.model.description}), ${info.renderer}`;
+  $("model").textContent = `${info.model.name} (k = ${info.model.k}: ${info.model.description}), ${info.renderer}; ${info.samples} samples (half rounding: ${info.half_code_error} code values)`;
   state.lights = info.lights.map((l) => ({...l, library: false}));
   state.nodes = regularPolygon(state.lights.length);
   state.view = {...info.view};
   state.size = {width: info.width, height: info.height};
-  const wantGl = !new URLSearchParams(location.search).has("nogl");
-  relighter = new Relighter($("image"), wantGl);
-  if (wantGl && !relighter.gl) relighter = new Relighter($("image"), false);
+  // Half samples unless the server measured that their rounding shows under this scene's
+  // lights (info.half_code_error); ?samples=half|float overrides.
+  state.samples = new URLSearchParams(location.search).get("samples") || info.samples;
+  const path = new URLSearchParams(location.search).get("relight") || "auto";
+  relighter = new Relighter($("image"), path);
   dialWeights();
   if (!embedded) await restoreFragment();
   buildSliders();
@@ -453,8 +456,9 @@ async function start() {
 window.svr = {
   state, stats, setHandle, toggleLight, setWeight, setWeights, addLight, saveMix, benchRelight,
   dialToClient, mixerWeights, regularPolygon,
-  pixels: () => relighter.pixels(),
+  pixels: () => { relightNow(); return relighter.pixels(); },  // the canvas for the current state
   relighterKind: () => relighter.kind,
+  softwareWebGL: () => relighter.software,
   setView: (view) => { Object.assign(state.view, view); viewChanged(); },
   ready: start().catch((e) => { message(e.message); throw e; }),
 };
