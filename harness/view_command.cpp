@@ -12,6 +12,7 @@
 #include <unistd.h>
 
 #include "harness/command.h"
+#include "renderers/core/memory_budget.h"
 #include "renderers/registry.h"
 #include "spectral/error.h"
 
@@ -28,6 +29,7 @@ struct ViewCommandOptions {
   std::string scene, host = "127.0.0.1", renderer = "shearwarp", model;
   std::vector<std::string> options;
   int port = 8765;
+  std::string memory_budget;
   bool read_only = false, quiet = false;
 };
 
@@ -45,6 +47,7 @@ int runView(const ViewCommandOptions& o, const std::string& data_dir) {
   if (o.port < 0 || o.port > 65535)
     throw Error(fmt::format("view: --port {} is outside 0..65535", o.port));
   ViewOptions vo{o.scene, o.renderer, o.model, data_dir, o.options, o.read_only};
+  if (!o.memory_budget.empty()) vo.memory_budget = parseByteSize(o.memory_budget, "--memory-budget");
   ViewSession session(vo);
   ViewServer server(session);
   const int port = server.bind(o.host, o.port);
@@ -89,6 +92,9 @@ CommandEntry view() {
             sub.add_option("--model", o->model,
                            "colour model: rgb, factor:k, spectral:n or auto (default: the scene's)");
             sub.add_option("--option", o->options, "backend option BACKEND.KEY=VALUE (repeatable)");
+            sub.add_option("--memory-budget", o->memory_budget,
+                           "most bytes of voxels and of one frame's images, e.g. 512M (default: "
+                           "the memory available now)");
             sub.add_flag("--read-only", o->read_only, "never write the scene file (no saved mixes)");
             sub.add_flag("-q,--quiet", o->quiet, "say nothing but the URL");
             addCacheFlag(sub);

@@ -3,6 +3,8 @@
 #include <fmt/format.h>
 #include <httplib.h>
 
+#include <sys/socket.h>
+
 #include <sstream>
 
 #include "spectral/error.h"
@@ -74,6 +76,17 @@ std::vector<std::array<double, 3>> parseNodes(const std::string& text) {
 ViewServer::ViewServer(ViewSession& session)
     : session_(session), server_(std::make_unique<httplib::Server>()) {
   server_->set_payload_max_length(kMaxBody);
+  // An idle keep-alive connection holds one of the worker threads: let it go soon.
+  server_->set_keep_alive_timeout(2);
+  server_->set_keep_alive_max_count(100);
+  // The socket options hook is the one place httplib shows the listening socket: keep it, to
+  // widen the accept queue after bind (below). SO_REUSEADDR as httplib's default sets it; not
+  // SO_REUSEPORT, which would let another process listen on the same port.
+  server_->set_socket_options([this](socket_t sock) {
+    int yes = 1;
+    ::setsockopt(sock, SOL_SOCKET, SO_REUSEADDR, &yes, sizeof(yes));
+    listen_socket_ = sock;
+  });
   routes();
 }
 
@@ -84,6 +97,9 @@ int ViewServer::bind(const std::string& host, int port) {
   if (bound <= 0)
     throw Error(fmt::format("view: cannot listen on {}:{} (in use, or not an address of this "
                             "machine)", host, port));
+  // Debian's libcpp-httplib is built with an accept queue of 5: a burst of connections beyond
+  // it waits for TCP's SYN retries (1 s, 3 s, 7 s, …). Listening again only resizes the queue.
+  if (listen_socket_ >= 0) ::listen(listen_socket_, SOMAXCONN);
   return bound;
 }
 

@@ -30,6 +30,7 @@ class ViewServer {
   void routes();
   ViewSession& session_;
   std::unique_ptr<httplib::Server> server_;
+  int listen_socket_ = -1;
 };
 
 }  // namespace svr

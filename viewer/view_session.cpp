@@ -23,7 +23,7 @@ ViewSession::ViewSession(const ViewOptions& options)
       grid_(WavelengthGrid::standard()),
       library_(SpectrumLibrary::load(options.data_dir, grid_)),
       observer_(Observer::cie1931(options.data_dir, grid_)),
-      scene_(loadScene(options.scene, library_)) {
+      scene_(loadScene(options.scene, library_, VolumeLoadOptions{.memory_budget = options.memory_budget})) {
   renderer_ = makeRenderer(options.renderer);
   checkRendererOptions(scene_.renderer_options, options.scene + ": render.options");
   for (const auto& option : options.options)
@@ -37,6 +37,7 @@ ViewSession::ViewSession(const ViewOptions& options)
                             model.name(), planes, kMaxPlanes));
   initial_view_ = orbitViewOf(scene_.camera);
   RenderRequest first = sceneRequest(scene_, *classified_);
+  first.memory_budget = options.memory_budget;
   first.camera = orbitCamera(scene_.camera, initial_view_);
   samples_ = chooseSamples(lightContext(), scene_, renderer_->render(first, nullptr));
 
@@ -67,6 +68,7 @@ std::optional<ViewFrame> ViewSession::render(const ViewRequest& request) {
   if (latest_.load() != mine) return std::nullopt;  // a newer view is waiting behind this one
   RenderRequest r = sceneRequest(scene_, *classified_);
   r.camera = orbitCamera(scene_.camera, request.view);
+  r.memory_budget = options_.memory_budget;
   r.width = request.width;
   r.height = request.height;
   const auto t0 = std::chrono::steady_clock::now();

@@ -20,6 +20,7 @@
 
 #include "renderers/core/camera.h"
 #include "renderers/core/classification.h"
+#include "renderers/core/memory_budget.h"
 #include "renderers/core/renderer.h"
 #include "renderers/core/scene.h"
 #include "renderers/core/scene_model.h"
@@ -34,6 +35,7 @@ struct ViewOptions {
   std::string scene, renderer = "shearwarp", model, data_dir;
   std::vector<std::string> options;  // BACKEND.KEY=VALUE
   bool read_only = false;            // refuse to save mixes into the scene file
+  std::uint64_t memory_budget = defaultMemoryBudget();  // voxels, and each frame with its work
 };
 
 struct ViewRequest {
@@ -73,6 +75,8 @@ class ViewSession {
   void saveMix(const std::string& name, const std::vector<std::pair<std::string, double>>& weights);
 
   bool readOnly() const { return options_.read_only; }
+  const Scene& scene() const { return scene_; }
+  const ClassifiedVolume& classified() const { return *classified_; }
   const ViewOptions& options() const { return options_; }
   const OrbitView& initialView() const { return initial_view_; }
 
