@@ -88,6 +88,7 @@ const random = () => ((seed = (seed * 1103515245 + 12345) % 2147483648) / 214748
 async function checkLightsAtNodes(page, label) {
   const lights = report.images.filter((im) => !im.file.startsWith("mix_"));
   for (let i = 0; i < lights.length; ++i) {
+    await page.evaluate(() => svr.settled());
     const handle = await page.evaluate(() => svr.state.handle);
     const node = await page.evaluate((i) => svr.state.nodes[i], i);
     await mouseDrag(page, await dialClient(page, handle.x, handle.y), await dialClient(page, node.x, node.y));
@@ -125,29 +126,33 @@ try {
     });
     const refMoved = await libraryWeights(0.2, -0.1, moved.nodes);
     check(close(moved.weights, refMoved, 1e-12), `${relight}: moved nodes, light 1 off: weights = LightMixer's`);
-    await page.evaluate(() => { svr.state.nodes.splice(0, svr.state.nodes.length, ...svr.regularPolygon(svr.state.nodes.length)); svr.setHandle(0.1, 0.1); });
+    await page.evaluate(() => { svr.state.nodes.splice(0, svr.state.nodes.length, ...svr.regularPolygon(svr.state.nodes.length)); svr.setHandle(0.1, 0.1); return svr.settled(); });
 
     // Switching a light off by clicking its node.
     const n1 = await page.evaluate(() => svr.state.nodes[1]);
     const c1 = await dialClient(page, n1.x, n1.y);
     await page.mouse.click(c1.x, c1.y);
+    await page.evaluate(() => svr.settled());
     const off = await page.evaluate(() => svr.state);
     const refOff = await libraryWeights(off.handle.x, off.handle.y, off.nodes);
     check(!off.nodes[1].on && off.weights[1] === 0 && close(off.weights, refOff, 1e-12), `${relight}: a click switches light 1 off: its weight is 0, the rest are LightMixer's without it`);
     await page.mouse.click(c1.x, c1.y);
+    await page.evaluate(() => svr.settled());
     check(await page.evaluate(() => svr.state.nodes[1].on), `${relight}: a second click switches it on again`);
     // In a slider-set mix, switching off equals setting the weight to 0.
-    await page.evaluate(() => svr.setWeights([0.5, 0.3, 0.2]));
+    await page.evaluate(() => { svr.setWeights([0.5, 0.3, 0.2]); return svr.settled(); });
     await page.mouse.click(c1.x, c1.y);
+    await page.evaluate(() => svr.settled());
     const offPixels = await pixels(page);
     const offWeights = await page.evaluate(() => svr.state.weights);
     await page.mouse.click(c1.x, c1.y);
+    await page.evaluate(() => svr.settled());
     await page.evaluate(() => svr.setWeights([0.5, 0, 0.2]));
     const zeroPixels = await pixels(page);
     check(close(offWeights, [0.5, 0, 0.2], 0) && bytesDiffer(offPixels, zeroPixels) === 0, `${relight}: switching light 1 off = setting its weight to 0 (weights ${offWeights}; ${bytesDiffer(offPixels, zeroPixels)} bytes differ)`);
 
     // The sliders and the dial are two views of the same weights.
-    await page.evaluate(() => svr.setHandle(-0.3, 0.25));
+    await page.evaluate(() => { svr.setHandle(-0.3, 0.25); return svr.settled(); });
     const dial = await page.evaluate(() => ({w: svr.state.weights, s: svr.state.weights.map((_, i) => Number(document.getElementById(`weight-${i}`).value))}));
     check(close(dial.w, dial.s, 0.0005), `${relight}: after a dial move the sliders show its weights (${dial.s})`);
     await page.evaluate(() => { const e = document.getElementById("weight-2"); e.value = "0.25"; e.dispatchEvent(new Event("input")); });
@@ -170,8 +175,8 @@ try {
           `${relight}: an orbit drag re-renders (azimuth ${view.azimuth.toFixed(1)}°; ${bytesDiffer(before, after)} of ${before.length} bytes changed)`);
 
     // A reload with the URL fragment restores the view and the weights.
-    await page.evaluate(() => svr.setHandle(0.31, -0.22));
-    await page.evaluate(() => { document.getElementById("brightness").value = "1.5"; document.getElementById("brightness").dispatchEvent(new Event("input")); });
+    await page.evaluate(() => { svr.setHandle(0.31, -0.22); return svr.settled(); });
+    await page.evaluate(() => { document.getElementById("brightness").value = "1.5"; document.getElementById("brightness").dispatchEvent(new Event("input")); return svr.settled(); });
     const saved = await page.evaluate(() => ({s: svr.state, hash: location.hash}));
     await page.reload();
     await page.evaluate(() => svr.ready);
@@ -200,6 +205,12 @@ async function measure() {
     await page.evaluate(() => svr.benchRelight(10));
     out[`relight_800_${relight}`] = await page.evaluate(() => svr.benchRelight(120));
     // Display-paced: one relight per animation frame for 2 s.
+    out[`relight_800_${relight}_raf_only_fps`] = await page.evaluate(() => new Promise((resolve) => {
+      let n = 0; const t0 = performance.now();
+      const step = () => { svr.relightOnly(n); n++;
+        if (performance.now() - t0 < 2000) requestAnimationFrame(step); else resolve(n / ((performance.now() - t0) / 1000)); };
+      requestAnimationFrame(step);
+    }));
     out[`relight_800_${relight}_raf_fps`] = await page.evaluate(() => new Promise((resolve) => {
       let n = 0; const t0 = performance.now();
       const step = () => { svr.setHandle(Math.cos(n / 20) * 0.5, Math.sin(n / 20) * 0.5); n++;

@@ -60,12 +60,16 @@ function mixedMatrix() {
   return m;
 }
 
-let drawPending = false;
+// Everything a weight change redraws (canvas, dial, sliders) is redrawn once per animation
+// frame however many changes came in it; the URL fragment at most every 250 ms (browsers
+// throttle history updates).
+let drawPending = false, dialDirty = false;
 function relight() {
   if (drawPending) return;
   drawPending = true;
   requestAnimationFrame(() => {
     drawPending = false;
+    if (dialDirty) { dialDirty = false; drawDial(); syncSliders(); }
     relightNow();
   });
 }
@@ -101,8 +105,7 @@ function dialWeights() {
 }
 
 function weightsChanged() {
-  drawDial();
-  syncSliders();
+  dialDirty = true;
   relight();
   saveFragment();
 }
@@ -237,7 +240,11 @@ function wireDial() {
 }
 
 // ---- views: orbit by drag, zoom by wheel; a quarter-size frame first, then full size ----
+// While an orbit drag is held only quarter-size frames are asked for, one at a time, each for the
+// newest view: a full frame between two mouse moves would hold the renderer for the next one.
+// The full frame follows when the drag ends, or at once for a wheel step or a set view.
 let quarterInFlight = false, fullAbort = null, pendingView = null, viewStarted = 0;
+let interacting = false;
 
 function renderUrl(view, scale) {
   const w = Math.max(1, Math.round(state.size.width / scale)), h = Math.max(1, Math.round(state.size.height / scale));
@@ -281,6 +288,10 @@ async function pump() {
   } catch (e) { message(`render: ${e.message}`); }
   quarterInFlight = false;
   if (pendingView) return pump();  // still dragging: the newest view's quarter frame next
+  if (!interacting) requestFull(view);
+}
+
+async function requestFull(view) {
   const abort = new AbortController();
   fullAbort = abort;
   try {
@@ -295,15 +306,26 @@ function wireOrbit() {
   let drag = null;
   canvas.addEventListener("pointerdown", (e) => {
     canvas.setPointerCapture(e.pointerId);
-    drag = {x: e.clientX, y: e.clientY, view: {...state.view}};
+    drag = {x: e.clientX, y: e.clientY, view: {...state.view}, moved: false};
+    interacting = true;
   });
   canvas.addEventListener("pointermove", (e) => {
     if (!drag) return;
+    drag.moved = true;
     state.view.azimuth = drag.view.azimuth - 0.5 * (e.clientX - drag.x);
     state.view.elevation = Math.min(89, Math.max(-89, drag.view.elevation + 0.5 * (e.clientY - drag.y)));
     viewChanged();
   });
-  canvas.addEventListener("pointerup", () => { drag = null; });
+  const release = () => {
+    const moved = drag && drag.moved;
+    drag = null;
+    interacting = false;
+    // The quarter frame of the last view may still be on its way; pump asks for the full one
+    // after it. Otherwise ask now.
+    if (moved && !quarterInFlight && !pendingView) requestFull({...state.view});
+  };
+  canvas.addEventListener("pointerup", release);
+  canvas.addEventListener("pointercancel", release);
   canvas.addEventListener("wheel", (e) => {
     e.preventDefault();
     state.view.zoom = Math.min(50, Math.max(0.05, state.view.zoom * Math.exp(-0.001 * e.deltaY)));
@@ -313,8 +335,13 @@ function wireOrbit() {
 
 // ---- the URL fragment: view, size, weights, dial and added lights ----
 const round = (v) => Number(v.toFixed(6));
+let fragmentTimer = null;
 function saveFragment() {
-  if (embedded) return;
+  if (embedded || fragmentTimer) return;
+  fragmentTimer = setTimeout(() => { fragmentTimer = null; writeFragment(); }, 250);
+}
+
+function writeFragment() {
   const f = new URLSearchParams();
   f.set("view", [state.view.azimuth, state.view.elevation, state.view.zoom].map(round).join(","));
   f.set("size", `${state.size.width}x${state.size.height}`);
@@ -460,6 +487,13 @@ window.svr = {
   relighterKind: () => relighter.kind,
   softwareWebGL: () => relighter.software,
   setView: (view) => { Object.assign(state.view, view); viewChanged(); },
+  // Resolves once the pending redraw of dial and sliders is done and the fragment is written.
+  // One relight with a slightly different brightness and nothing else redrawn (for timing).
+  relightOnly: (i) => { const b = state.brightness; state.brightness = b * (1 + 1e-3 * (i % 2)); relightNow(); state.brightness = b; },
+  settled: () => new Promise((resolve) => requestAnimationFrame(() => requestAnimationFrame(() => {
+    if (fragmentTimer) { clearTimeout(fragmentTimer); fragmentTimer = null; writeFragment(); }
+    resolve();
+  }))),
   ready: start().catch((e) => { message(e.message); throw e; }),
 };
 })();
