@@ -183,6 +183,21 @@ try {
     const restored = await page.evaluate(() => svr.state);
     check(close(Object.values(restored.view), Object.values(saved.s.view), 1e-6) && close(restored.weights, saved.s.weights, 1e-6) &&
           restored.brightness === 1.5, `${relight}: reload with ${saved.hash} restores view and weights`);
+
+    // A library light by name: a fourth node, slider and matrix (the server's), kept in the URL.
+    await page.type("#light-name", "D65");
+    await page.click("#add-light button");
+    await page.waitForFunction(() => svr.state.lights.length === 4, {timeout: 10000});
+    await page.evaluate(() => svr.settled());
+    const added = await page.evaluate(() => ({n: svr.state.nodes.length, sliders: document.querySelectorAll("#sliders input").length, hash: location.hash, m: svr.state.lights[3].matrix}));
+    const d65 = (await (await fetch(`${url}api/light?name=D65`)).json()).matrix;
+    check(added.n === 4 && added.sliders === 4 && added.hash.includes("add=D65") && JSON.stringify(added.m) === JSON.stringify(d65),
+          `${relight}: 'add light D65' adds a node, a slider and the server's matrix, and the URL keeps it`);
+    await page.evaluate(() => { document.getElementById("light-name").value = ""; });
+    await page.type("#light-name", "D66");
+    await page.click("#add-light button");
+    await page.waitForFunction(() => document.getElementById("message").textContent.includes("D66"), {timeout: 10000});
+    check((await page.evaluate(() => svr.state.lights.length)) === 4, `${relight}: an unknown light name is refused with the server's message: ${await page.evaluate(() => document.getElementById("message").textContent)}`);
     await page.close();
   }
 
