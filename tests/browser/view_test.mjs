@@ -43,14 +43,19 @@ const report = JSON.parse(fs.readFileSync(path.join(renderDir, "render.json"), "
 const png = (file) => PNG.sync.read(fs.readFileSync(path.join(renderDir, file)));
 
 // svr view on any free loopback port; its first line names the URL.
-const server = spawn(args.svr, ["view", args.scene, "--port", "0", "--renderer", "shearwarp", "--read-only"],
-                     {stdio: ["ignore", "pipe", "inherit"]});
-const url = await new Promise((resolve, reject) => {
-  let out = "";
-  server.stdout.on("data", (d) => { out += d; const m = /http:\/\/\S+\//.exec(out); if (m) resolve(m[0]); });
-  server.on("exit", (code) => reject(new Error(`svr view exited ${code}: ${out}`)));
-  setTimeout(() => reject(new Error("svr view did not start in 120 s")), 120000);
-});
+const servers = [];
+async function startServer(scene, extra) {
+  const server = spawn(args.svr, ["view", scene, "--port", "0", "--renderer", "shearwarp", ...extra],
+                       {stdio: ["ignore", "pipe", "inherit"]});
+  servers.push(server);
+  return new Promise((resolve, reject) => {
+    let out = "";
+    server.stdout.on("data", (d) => { out += d; const m = /http:\/\/\S+\//.exec(out); if (m) resolve(m[0]); });
+    server.on("exit", (code) => reject(new Error(`svr view exited ${code}: ${out}`)));
+    setTimeout(() => reject(new Error("svr view did not start in 120 s")), 120000);
+  });
+}
+const url = await startServer(args.scene, ["--read-only"]);
 const browser = await puppeteer.launch({executablePath: chromium, headless: true,
   args: ["--no-sandbox", "--use-angle=swiftshader", "--enable-unsafe-swiftshader", "--force-color-profile=srgb"]});
 
@@ -206,10 +211,32 @@ try {
   await checkLightsAtNodes(page, "view.html");
   await page.close();
 
+  await checkSaveMix();
   if (args.numbers) fs.writeFileSync(args.numbers, JSON.stringify(await measure(), null, 1) + "\n");
 } finally {
   await browser.close();
-  server.kill("SIGINT");
+  for (const server of servers) server.kill("SIGINT");
+}
+
+// "save mix to scene" on a copy of the scene (its paths made absolute): the mix lands in the file.
+async function checkSaveMix() {
+  const scene = JSON.parse(fs.readFileSync(args.scene, "utf8"));
+  const base = path.dirname(path.resolve(args.scene));
+  if (scene.volume && scene.volume.file) scene.volume.file = path.resolve(base, scene.volume.file);
+  if (scene.palette && scene.palette.design) scene.palette.design = path.resolve(base, scene.palette.design);
+  const copy = path.join(work, "scene_copy.json");
+  fs.writeFileSync(copy, JSON.stringify(scene, null, 2));
+  const writable = await startServer(copy, []);
+  const page = await openPage(`${writable}?relight=js#size=64x64`);
+  await page.evaluate(() => { svr.setHandle(-0.43, 0.25); return svr.settled(); });
+  await page.type("#mix-name", "dusk");
+  await page.click("#save-mix button");
+  await page.waitForFunction(() => document.getElementById("status").textContent.includes("saved mix"), {timeout: 10000});
+  const expected = await page.evaluate(() => svr.state.weights.map((w, i) => [svr.state.lights[i].name, Number((w * svr.state.brightness).toFixed(6))]));
+  const saved = JSON.parse(fs.readFileSync(copy, "utf8")).light_mixes.dusk;
+  check(JSON.stringify(saved) === JSON.stringify(Object.fromEntries(expected.filter(([, w]) => w > 0))),
+        `save mix: the scene file now holds light_mixes.dusk = ${JSON.stringify(saved)}`);
+  await page.close();
 }
 
 // The issue's numbers: relight fps at 800², view-change latency and orbit fps at 512².
