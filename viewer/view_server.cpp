@@ -106,6 +106,58 @@ int ViewServer::bind(const std::string& host, int port) {
 void ViewServer::listen() { server_->listen_after_bind(); }
 void ViewServer::stop() { server_->stop(); }
 
+void ViewServer::answerRender(const httplib::Request& req, httplib::Response& res) {
+  const QueryParams q(req.params, {"azimuth", "elevation", "zoom", "width", "height", "samples"});
+  const auto& info = session_.sceneInfo();
+  const OrbitView& v0 = session_.initialView();
+  ViewRequest r;
+  r.view.azimuth = q.number("azimuth", v0.azimuth, -3600, 3600);
+  r.view.elevation = q.number("elevation", v0.elevation, -90, 90);
+  r.view.zoom = q.number("zoom", 1.0, 0.01, 100);
+  r.width = q.integer("width", info["width"], 1, ViewSession::kMaxSide);
+  r.height = q.integer("height", info["height"], 1, ViewSession::kMaxSide);
+  if (q.has("samples")) {
+    const std::string samples = q.text("samples", "", 8);
+    if (samples != "half" && samples != "float")
+      throw BadRequest(fmt::format("parameter samples='{}' is not half or float", samples));
+    r.samples = samples == "half" ? SampleStorage::kHalf : SampleStorage::kFloat;
+  }
+  const auto frame = session_.render(r);
+  if (!frame) {
+    answer(res, 409, "superseded by a newer view request");
+    return;
+  }
+  const nlohmann::json header = {
+      {"width", frame->image.width()}, {"height", frame->image.height()},
+      {"channels", frame->image.channels()},
+      {"t_channels", frame->image.transmittanceChannels()},
+      {"render_ms", frame->render_ms}, {"sequence", frame->sequence},
+      {"azimuth", r.view.azimuth}, {"elevation", r.view.elevation}, {"zoom", r.view.zoom}};
+  res.set_header("Cache-Control", "no-store");
+  res.set_content(encodeFrame(frame->image, header), "application/octet-stream");
+}
+
+void ViewServer::answerSaveMix(const httplib::Request& req, httplib::Response& res) {
+  const QueryParams q(req.params, {"name"});
+  if (session_.readOnly()) {
+    answer(res, 403, "the server was started with --read-only: mixes are not saved");
+    return;
+  }
+  if (!q.has("name")) throw BadRequest("parameter 'name' is missing");
+  const auto body = nlohmann::json::parse(req.body, nullptr, false);
+  if (body.is_discarded() || !body.is_object() || !body.contains("weights") ||
+      !body["weights"].is_object())
+    throw BadRequest("the body must be JSON {\"weights\": {\"LIGHT\": WEIGHT, …}}");
+  std::vector<std::pair<std::string, double>> weights;
+  for (const auto& [light, w] : body["weights"].items()) {
+    if (!w.is_number())
+      throw BadRequest(fmt::format("weight of light '{}' is not a number", light.substr(0, 64)));
+    weights.emplace_back(light, w.get<double>());
+  }
+  session_.saveMix(q.text("name", "", 64), weights);
+  answerJson(res, {{"saved", q.text("name", "", 64)}, {"file", session_.options().scene}});
+}
+
 void ViewServer::routes() {
   httplib::Server& s = *server_;
   s.Get("/api/scene", [this](const httplib::Request& req, httplib::Response& res) {
@@ -137,58 +189,10 @@ void ViewServer::routes() {
     });
   });
   s.Get("/api/render", [this](const httplib::Request& req, httplib::Response& res) {
-    guarded(res, 500, [&] {
-      const QueryParams q(req.params, {"azimuth", "elevation", "zoom", "width", "height", "samples"});
-      const auto& info = session_.sceneInfo();
-      const OrbitView& v0 = session_.initialView();
-      ViewRequest r;
-      r.view.azimuth = q.number("azimuth", v0.azimuth, -3600, 3600);
-      r.view.elevation = q.number("elevation", v0.elevation, -90, 90);
-      r.view.zoom = q.number("zoom", 1.0, 0.01, 100);
-      r.width = q.integer("width", info["width"], 1, ViewSession::kMaxSide);
-      r.height = q.integer("height", info["height"], 1, ViewSession::kMaxSide);
-      if (q.has("samples")) {
-        const std::string samples = q.text("samples", "", 8);
-        if (samples != "half" && samples != "float")
-          throw BadRequest(fmt::format("parameter samples='{}' is not half or float", samples));
-        r.samples = samples == "half" ? SampleStorage::kHalf : SampleStorage::kFloat;
-      }
-      const auto frame = session_.render(r);
-      if (!frame) {
-        answer(res, 409, "superseded by a newer view request");
-        return;
-      }
-      const nlohmann::json header = {
-          {"width", frame->image.width()}, {"height", frame->image.height()},
-          {"channels", frame->image.channels()},
-          {"t_channels", frame->image.transmittanceChannels()},
-          {"render_ms", frame->render_ms}, {"sequence", frame->sequence},
-          {"azimuth", r.view.azimuth}, {"elevation", r.view.elevation}, {"zoom", r.view.zoom}};
-      res.set_header("Cache-Control", "no-store");
-      res.set_content(encodeFrame(frame->image, header), "application/octet-stream");
-    });
+    guarded(res, 500, [&] { answerRender(req, res); });
   });
   s.Post("/api/mixes", [this](const httplib::Request& req, httplib::Response& res) {
-    guarded(res, 400, [&] {
-      const QueryParams q(req.params, {"name"});
-      if (session_.readOnly()) {
-        answer(res, 403, "the server was started with --read-only: mixes are not saved");
-        return;
-      }
-      if (!q.has("name")) throw BadRequest("parameter 'name' is missing");
-      const auto body = nlohmann::json::parse(req.body, nullptr, false);
-      if (body.is_discarded() || !body.is_object() || !body.contains("weights") ||
-          !body["weights"].is_object())
-        throw BadRequest("the body must be JSON {\"weights\": {\"LIGHT\": WEIGHT, …}}");
-      std::vector<std::pair<std::string, double>> weights;
-      for (const auto& [light, w] : body["weights"].items()) {
-        if (!w.is_number())
-          throw BadRequest(fmt::format("weight of light '{}' is not a number", light.substr(0, 64)));
-        weights.emplace_back(light, w.get<double>());
-      }
-      session_.saveMix(q.text("name", "", 64), weights);
-      answerJson(res, {{"saved", q.text("name", "", 64)}, {"file", session_.options().scene}});
-    });
+    guarded(res, 400, [&] { answerSaveMix(req, res); });
   });
   // The page's files; anything else is 404 (nothing is served from the file system, so no
   // path can reach outside the page).

@@ -11,6 +11,8 @@
 
 namespace httplib {
 class Server;
+struct Request;
+struct Response;
 }
 
 namespace svr {
@@ -28,6 +30,8 @@ class ViewServer {
 
  private:
   void routes();
+  void answerRender(const httplib::Request& req, httplib::Response& res);
+  void answerSaveMix(const httplib::Request& req, httplib::Response& res);
   ViewSession& session_;
   std::unique_ptr<httplib::Server> server_;
   int listen_socket_ = -1;
