@@ -25,8 +25,8 @@
 #include "spectral/error.h"
 #include "spectral/light_mixer.h"
 #include "spectral/post_illumination.h"
-#include "viewer/page_data.h"
-#include "viewer/standalone_page.h"
+#include "harness/view/page_data.h"
+#include "harness/view/standalone_page.h"
 
 namespace svr {
 namespace fs = std::filesystem;

@@ -18,7 +18,7 @@ struct RenderOptions {
   std::string out_dir;
   std::optional<int> width, height;
   bool half = false;  // store the EXR as half floats
-  bool html = false;  // also write view.html (viewer/standalone_page.h)
+  bool html = false;  // also write view.html (harness/view/standalone_page.h)
   std::vector<std::string> options;  // "backend.key=value", over the scene's render.options
   std::optional<std::uint64_t> memory_budget;
   bool quiet = false;

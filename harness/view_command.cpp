@@ -1,5 +1,5 @@
 // `svr view SCENE`: the scene served to a browser for interactive relighting and orbiting
-// (viewer/, docs/viewer.md).
+// (harness/view/, docs/viewer.md).
 
 #include <CLI/CLI.hpp>
 #include <fmt/format.h>
@@ -17,8 +17,8 @@
 #include "spectral/error.h"
 
 #ifdef SVR_HAVE_VIEWER
-#include "viewer/view_server.h"
-#include "viewer/view_session.h"
+#include "harness/view/view_server.h"
+#include "harness/view/view_session.h"
 #endif
 
 namespace svr {

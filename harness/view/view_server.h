@@ -7,7 +7,7 @@
 #include <memory>
 #include <string>
 
-#include "viewer/view_session.h"
+#include "harness/view/view_session.h"
 
 namespace httplib {
 class Server;

@@ -1,4 +1,4 @@
-#include "viewer/standalone_page.h"
+#include "harness/view/standalone_page.h"
 
 #include <fmt/format.h>
 #include <openssl/evp.h>
@@ -6,8 +6,8 @@
 #include <vector>
 
 #include "spectral/error.h"
-#include "viewer/frame_format.h"
-#include "viewer/web_assets.h"
+#include "harness/view/frame_format.h"
+#include "harness/view/web_assets.h"
 
 namespace svr {
 

@@ -1,4 +1,4 @@
-#include "viewer/page_data.h"
+#include "harness/view/page_data.h"
 
 #include <algorithm>
 #include <cstdlib>

@@ -1,7 +1,7 @@
 // svr view's server over real HTTP (cpp-httplib's client against ViewServer on loopback): what
 // it answers, what it refuses, under load, and where it listens.
 
-#include "viewer/view_server.h"
+#include "harness/view/view_server.h"
 
 #include <gtest/gtest.h>
 #include <httplib.h>
@@ -15,7 +15,7 @@
 #include "renderers/core/scene_render.h"
 #include "renderers/registry.h"
 #include "spectral/error.h"
-#include "viewer/frame_format.h"
+#include "harness/view/frame_format.h"
 
 namespace svr {
 namespace {
@@ -41,7 +41,7 @@ std::string writeScene(const fs::path& dir) {
   return file.string();
 }
 
-// The JSON header and the plane bytes of a frame (viewer/frame_format.h).
+// The JSON header and the plane bytes of a frame (harness/view/frame_format.h).
 std::pair<nlohmann::json, std::string> splitFrame(const std::string& body) {
   EXPECT_EQ(body.substr(0, 4), "SVRI");
   std::uint32_t n = 0;

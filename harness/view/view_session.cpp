@@ -1,4 +1,4 @@
-#include "viewer/view_session.h"
+#include "harness/view/view_session.h"
 
 #include <fmt/format.h>
 

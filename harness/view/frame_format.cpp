@@ -1,4 +1,4 @@
-#include "viewer/frame_format.h"
+#include "harness/view/frame_format.h"
 
 #include <bit>
 #include <cstdint>

@@ -27,7 +27,7 @@
 #include "spectral/colorimetry.h"
 #include "spectral/light_independent_image.h"
 #include "spectral/spectrum_library.h"
-#include "viewer/page_data.h"
+#include "harness/view/page_data.h"
 
 namespace svr {
 

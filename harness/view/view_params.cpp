@@ -1,4 +1,4 @@
-#include "viewer/view_params.h"
+#include "harness/view/view_params.h"
 
 #include <fmt/format.h>
 

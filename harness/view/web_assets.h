@@ -1,5 +1,5 @@
 #pragma once
-// The viewer's page (viewer/web/: HTML, JS, CSS), embedded in the binary at build time
+// The viewer's page (harness/view/web/: HTML, JS, CSS), embedded in the binary at build time
 // (cmake/EmbedFiles.cmake), so `svr view` and `svr render --html` work from any folder and
 // nothing is fetched from the internet.
 

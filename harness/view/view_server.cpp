@@ -1,4 +1,4 @@
-#include "viewer/view_server.h"
+#include "harness/view/view_server.h"
 
 #include <fmt/format.h>
 #include <httplib.h>
@@ -9,9 +9,9 @@
 
 #include "spectral/error.h"
 #include "spectral/light_mixer.h"
-#include "viewer/frame_format.h"
-#include "viewer/view_params.h"
-#include "viewer/web_assets.h"
+#include "harness/view/frame_format.h"
+#include "harness/view/view_params.h"
+#include "harness/view/web_assets.h"
 
 namespace svr {
 
@@ -202,7 +202,7 @@ void ViewServer::routes() {
     const WebAsset* asset = findWebAsset(path);
     if (!asset) return answer(res, 404, fmt::format("no such path '/{}'", path));
     guarded(res, 400, [&] {
-      // The page takes ?relight=webgl2|js|auto (viewer/web/relighter.js); its files take nothing.
+      // The page takes ?relight=webgl2|js|auto (harness/view/web/relighter.js); its files take nothing.
       const QueryParams q(req.params, path == "index.html" ? std::initializer_list<const char*>{"relight"}
                                                            : std::initializer_list<const char*>{});
       const std::string relight = q.text("relight", "auto", 16);
