@@ -43,6 +43,9 @@ std::string QueryParams::text(const std::string& key, const std::string& fallbac
   if (it->second.empty() || it->second.size() > max_length)
     throw BadRequest(fmt::format("parameter {}='{}' must be 1–{} characters", key,
                                  shown(it->second), max_length));
+  for (const unsigned char c : it->second)
+    if (c < 0x20 || c == 0x7f)
+      throw BadRequest(fmt::format("parameter {}='{}' holds control characters", key, shown(it->second)));
   return it->second;
 }
 

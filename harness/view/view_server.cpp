@@ -21,7 +21,11 @@ constexpr size_t kMaxBody = 64 * 1024;  // a saved mix is a few hundred bytes
 
 void answer(httplib::Response& res, int status, const std::string& message) {
   res.status = status;
-  res.set_content(nlohmann::json{{"error", message}}.dump() + "\n", "application/json");
+  // Messages may quote what a client sent: bytes that are not UTF-8 are replaced, not thrown.
+  res.set_content(nlohmann::json{{"error", message}}.dump(-1, ' ', false,
+                                                        nlohmann::json::error_handler_t::replace) +
+                      "\n",
+                  "application/json");
 }
 
 void answerJson(httplib::Response& res, const nlohmann::json& body) {
@@ -138,6 +142,12 @@ void ViewServer::answerRender(const httplib::Request& req, httplib::Response& re
 }
 
 void ViewServer::answerSaveMix(const httplib::Request& req, httplib::Response& res) {
+  // A form-encoded body would be read as query parameters: JSON only.
+  if (req.get_header_value("Content-Type").rfind("application/json", 0) != 0) {
+    answer(res, 415, fmt::format("the body must be application/json, not '{}'",
+                                 req.get_header_value("Content-Type").substr(0, 60)));
+    return;
+  }
   const QueryParams q(req.params, {"name"});
   if (session_.readOnly()) {
     answer(res, 403, "the server was started with --read-only: mixes are not saved");
@@ -213,10 +223,16 @@ void ViewServer::routes() {
   });
   s.set_error_handler([](const httplib::Request& req, httplib::Response& res) {
     if (!res.body.empty()) return;  // a handler's own answer
-    std::string path = req.path.substr(0, 80);
-    for (char& c : path) if (c < 0x20 || c >= 0x7f) c = '?';
+    std::string path = req.path.substr(0, 80), method = req.method.substr(0, 16);
+    for (std::string* t : {&path, &method})
+      for (char& c : *t)
+        if (c < 0x20 || c >= 0x7f) c = '?';
+    if (method.empty())  // the request line itself was refused (414: URI too long, …)
+      return answer(res, res.status, fmt::format("request refused (HTTP {})", res.status));
+    if (method != "GET" && method != "POST")
+      return answer(res, 405, fmt::format("method {} is not served ({} {})", method, method, path));
     answer(res, res.status, res.status == 404 ? fmt::format("no such path '{}'", path)
-                                              : fmt::format("request refused (HTTP {})", res.status));
+                                              : fmt::format("{} {}: refused (HTTP {})", method, path, res.status));
   });
 }
 

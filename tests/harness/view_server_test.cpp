@@ -183,12 +183,15 @@ TEST_F(ViewServerTest, BadRequestsAreRefusedWithTheParameterAndTheServerKeepsSer
       {"/%2e%2e/%2e%2e/etc/passwd", 404, "no such path"},
       {"/viewer.js?x=1", 400, "unknown parameter 'x'"},
       {"/?relight=vulkan", 400, "parameter relight='vulkan' is not auto, webgl2 or js"},
-      {long_query.c_str(), 414, ""},
+      {"/api/light?name=%ff%fe", 404, "unknown spectrum"},
+      {"/api/light?name=a%00b", 400, "holds control characters"},
+      {long_query.c_str(), 414, "request refused (HTTP 414)"},
   };
   for (const auto& c : cases) {
     const auto [status, body] = get(c.path);
-    EXPECT_EQ(status, c.status) << c.path << ": " << body;
-    EXPECT_NE(body.find(c.message), std::string::npos) << c.path << ": " << body;
+    const std::string shown_path = std::string(c.path).substr(0, 60);
+    EXPECT_EQ(status, c.status) << shown_path << ": " << body;
+    EXPECT_NE(body.find(c.message), std::string::npos) << shown_path << ": " << body;
   }
   EXPECT_EQ(get("/api/scene").first, 200);
   EXPECT_EQ(get("/").first, 200);
@@ -225,6 +228,12 @@ TEST_F(ViewServerTest, SavingAMixWritesItIntoTheSceneFile) {
   EXPECT_NE(name->body.find("mix name '../evil' must be"), std::string::npos) << name->body;
   const auto big = c.Post("/api/mixes?name=big", std::string(100000, ' '), "application/json");
   EXPECT_EQ(big->status, 413);
+  const auto form = c.Post("/api/mixes?name=f", "weights=1", "application/x-www-form-urlencoded");
+  EXPECT_EQ(form->status, 415);
+  EXPECT_NE(form->body.find("the body must be application/json"), std::string::npos) << form->body;
+  const auto method = c.Delete("/api/scene");
+  EXPECT_EQ(method->status, 405);
+  EXPECT_NE(method->body.find("method DELETE is not served"), std::string::npos) << method->body;
 }
 
 TEST_F(ViewServerTest, ReadOnlyRefusesToSave) {
