@@ -50,6 +50,15 @@ std::pair<nlohmann::json, std::string> splitFrame(const std::string& body) {
   return {nlohmann::json::parse(body.substr(8, n)), body.substr(8 + n)};
 }
 
+// The frame's plane bytes are the image's planes, sample for sample.
+void expectPlanes(const std::string& planes, const LightIndependentImage& image, size_t sample_bytes) {
+  const size_t plane_bytes = image.pixels() * sample_bytes;
+  ASSERT_EQ(planes.size(), plane_bytes * image.planes());
+  for (int p = 0; p < image.planes(); ++p)
+    EXPECT_EQ(0, std::memcmp(planes.data() + p * plane_bytes, image.planeData(p), plane_bytes))
+        << "plane " << p;
+}
+
 class ViewServerTest : public ::testing::Test {
  protected:
   void start(bool read_only = false, std::uint64_t budget = 0, const std::string& host = "127.0.0.1") {
@@ -130,22 +139,14 @@ TEST_F(ViewServerTest, RenderIsTheBackendsImageOfThatView) {
   EXPECT_EQ(header["channels"], image.channels());
   EXPECT_EQ(header["t_channels"], image.transmittanceChannels());
   EXPECT_EQ(header["samples"], "float");
-  ASSERT_EQ(planes.size(), image.pixels() * image.planes() * 4);
-  for (int p = 0; p < image.planes(); ++p)
-    EXPECT_EQ(0, std::memcmp(planes.data() + p * image.pixels() * 4, image.planeData(p),
-                             image.pixels() * 4))
-        << "plane " << p;
+  expectPlanes(planes, image, 4);
   // Half samples: the same image rounded to half floats.
   const auto h = c.Get("/api/render?azimuth=30&elevation=10&zoom=1.5&width=32&height=24&samples=half");
   ASSERT_TRUE(h);
   const LightIndependentImage half = image.withStorage(SampleStorage::kHalf);
   const auto [half_header, half_planes] = splitFrame(h->body);
   EXPECT_EQ(half_header["samples"], "half");
-  ASSERT_EQ(half_planes.size(), half.pixels() * half.planes() * 2);
-  for (int p = 0; p < half.planes(); ++p)
-    EXPECT_EQ(0, std::memcmp(half_planes.data() + p * half.pixels() * 2, half.planeData(p),
-                             half.pixels() * 2))
-        << "plane " << p;
+  expectPlanes(half_planes, half, 2);
 }
 
 struct Refusal {
