@@ -40,6 +40,15 @@ ViewSession::ViewSession(const ViewOptions& options)
   first.memory_budget = options.memory_budget;
   first.camera = orbitCamera(scene_.camera, initial_view_);
   samples_ = chooseSamples(lightContext(), scene_, renderer_->render(first, nullptr));
+  // One tiny frame along each axis: a backend builds what it keeps per principal axis (shear-
+  // warp's run-length encodings, ~0.1 s each on the engine) at the first view along it, and
+  // that should not land on the first view change that crosses a diagonal.
+  for (const OrbitView axis : {OrbitView{0, 0, 1}, OrbitView{90, 0, 1}, OrbitView{0, 90, 1}}) {
+    RenderRequest warm = first;
+    warm.camera = orbitCamera(scene_.camera, axis);
+    warm.width = warm.height = 8;
+    renderer_->render(warm, nullptr);
+  }
 
   scene_info_ = pageSceneInfo(lightContext(), scene_, model_, renderer_->name(), initial_view_,
                               samples_);

@@ -56,8 +56,9 @@ class ViewSession {
   static constexpr int kMaxSide = 2048;
   static constexpr int kMaxPlanes = 32;
 
-  // Loads, classifies, and renders the initial view once: that warms what the backend keeps
-  // per classification, and decides half or float samples (chooseSamples).
+  // Loads, classifies, and renders the initial view once (which decides half or float samples,
+  // chooseSamples) and a tiny frame along each axis: that builds what the backend keeps per
+  // classification and axis before the first request.
   explicit ViewSession(const ViewOptions& options);
 
   // The scene's lights (each as a 3 × planes matrix to linear sRGB, unit luminance, the
