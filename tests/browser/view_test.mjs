@@ -232,6 +232,17 @@ async function checkSaveMix() {
   await page.type("#mix-name", "dusk");
   await page.click("#save-mix button");
   await page.waitForFunction(() => document.getElementById("status").textContent.includes("saved mix"), {timeout: 10000});
+  // save PNG: the download is the canvas.
+  const downloads = path.join(work, "downloads");
+  fs.mkdirSync(downloads, {recursive: true});
+  const cdp = await page.createCDPSession();
+  await cdp.send("Browser.setDownloadBehavior", {behavior: "allow", downloadPath: downloads});
+  await page.click("#save-png");
+  const file = path.join(downloads, "svr-view.png");
+  for (let t = 0; t < 100 && !fs.existsSync(file); ++t) await new Promise((r) => setTimeout(r, 100));
+  const canvas = await pixels(page);
+  const d = fs.existsSync(file) ? maxDiff(canvas, PNG.sync.read(fs.readFileSync(file))) : {max: -1};
+  check(d.max === 0, `save PNG: ${file} is the canvas, byte for byte`);
   const expected = await page.evaluate(() => svr.state.weights.map((w, i) => [svr.state.lights[i].name, Number((w * svr.state.brightness).toFixed(6))]));
   const saved = JSON.parse(fs.readFileSync(copy, "utf8")).light_mixes.dusk;
   check(JSON.stringify(saved) === JSON.stringify(Object.fromEntries(expected.filter(([, w]) => w > 0))),
