@@ -15,5 +15,4 @@ namespace svr {
 // little-endian, row 0 at the top: S planes first, then T.
 std::string encodeFrame(const LightIndependentImage& image, nlohmann::json header);
 
-
 }  // namespace svr

@@ -50,9 +50,9 @@ void guarded(httplib::Response& res, int error_status, F&& f) {
   }
 }
 
-// nodes=x:y:on,x:y:on,… (on is 0 or 1)
-std::vector<std::array<double, 3>> parseNodes(const std::string& text) {
-  std::vector<std::array<double, 3>> nodes;
+// nodes=x:y:on,x:y:on,… (on is 0 or 1), as the mixer they describe.
+LightMixer parseNodes(const std::string& text) {
+  LightMixer mixer;
   std::stringstream ss(text);
   std::string item;
   while (std::getline(ss, item, ',')) {
@@ -68,11 +68,11 @@ std::vector<std::array<double, 3>> parseNodes(const std::string& text) {
     if (i != 3 || (n[2] != 0 && n[2] != 1) || std::abs(n[0]) > 1e6 || std::abs(n[1]) > 1e6)
       throw BadRequest(fmt::format("nodes item '{}' is not x:y:on with |x|,|y| ≤ 1e6 and on 0 or 1",
                                    item.substr(0, 40)));
-    nodes.push_back(n);
-    if (nodes.size() > 64) throw BadRequest("nodes: more than 64 lights");
+    mixer.nodes.push_back({n[0], n[1], n[2] == 1});
+    if (mixer.nodes.size() > 64) throw BadRequest("nodes: more than 64 lights");
   }
-  if (nodes.empty()) throw BadRequest("nodes is empty");
-  return nodes;
+  if (mixer.nodes.empty()) throw BadRequest("nodes is empty");
+  return mixer;
 }
 
 }  // namespace
@@ -164,8 +164,9 @@ void ViewServer::answerSaveMix(const httplib::Request& req, httplib::Response& r
       throw BadRequest(fmt::format("weight of light '{}' is not a number", light.substr(0, 64)));
     weights.emplace_back(light, w.get<double>());
   }
-  session_.saveMix(q.text("name", "", 64), weights);
-  answerJson(res, {{"saved", q.text("name", "", 64)}, {"file", session_.options().scene}});
+  const std::string name = q.text("name", "", 64);
+  session_.saveMix(name, weights);
+  answerJson(res, {{"saved", name}, {"file", session_.options().scene}});
 }
 
 void ViewServer::routes() {
@@ -186,16 +187,10 @@ void ViewServer::routes() {
   s.Get("/api/mixer-weights", [this](const httplib::Request& req, httplib::Response& res) {
     guarded(res, 400, [&] {
       const QueryParams q(req.params, {"x", "y", "nodes"});
-      std::vector<std::array<double, 3>> nodes;
-      if (q.has("nodes")) {
-        nodes = parseNodes(q.text("nodes", "", 4096));
-      } else {
-        const int n = static_cast<int>(session_.sceneInfo()["lights"].size());
-        for (const auto& node : LightMixer::regularPolygon(n).nodes) nodes.push_back({node.x, node.y, 1.0});
-      }
-      const auto w = ViewSession::mixerWeights(nodes, q.number("x", 0, -1e6, 1e6),
-                                               q.number("y", 0, -1e6, 1e6));
-      answerJson(res, {{"weights", w}});
+      const LightMixer mixer =
+          q.has("nodes") ? parseNodes(q.text("nodes", "", 4096))
+                         : LightMixer::regularPolygon(static_cast<int>(session_.sceneInfo()["lights"].size()));
+      answerJson(res, {{"weights", mixer.weights(q.number("x", 0, -1e6, 1e6), q.number("y", 0, -1e6, 1e6))}});
     });
   });
   s.Get("/api/render", [this](const httplib::Request& req, httplib::Response& res) {

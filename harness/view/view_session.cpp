@@ -14,7 +14,6 @@
 #include "renderers/registry.h"
 #include "spectral/atomic_file.h"
 #include "spectral/error.h"
-#include "spectral/light_mixer.h"
 
 namespace svr {
 
@@ -64,33 +63,29 @@ nlohmann::json ViewSession::libraryLight(const std::string& name) const {
   return pageLight(lightContext(), name, library_.get(name));
 }
 
-std::vector<double> ViewSession::mixerWeights(const std::vector<std::array<double, 3>>& nodes,
-                                              double x, double y) {
-  LightMixer mixer;
-  for (const auto& n : nodes) mixer.nodes.push_back({n[0], n[1], n[2] != 0.0});
-  return mixer.weights(x, y);
-}
-
 std::optional<ViewFrame> ViewSession::render(const ViewRequest& request) {
   const std::uint64_t mine = ++latest_;
-  std::lock_guard lock(render_mutex_);
-  if (latest_.load() != mine) return std::nullopt;  // a newer view is waiting behind this one
-  RenderRequest r = sceneRequest(scene_, *classified_);
-  r.camera = orbitCamera(scene_.camera, request.view);
-  r.memory_budget = options_.memory_budget;
-  r.width = request.width;
-  r.height = request.height;
-  const auto t0 = std::chrono::steady_clock::now();
-  LightIndependentImage image = renderer_->render(r, nullptr);
-  const double ms =
-      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+  LightIndependentImage image;
+  double ms = 0;
+  {
+    std::lock_guard lock(render_mutex_);
+    if (latest_.load() != mine) return std::nullopt;  // a newer view is waiting behind this one
+    RenderRequest r = sceneRequest(scene_, *classified_);
+    r.camera = orbitCamera(scene_.camera, request.view);
+    r.memory_budget = options_.memory_budget;
+    r.width = request.width;
+    r.height = request.height;
+    const auto t0 = std::chrono::steady_clock::now();
+    image = renderer_->render(r, nullptr);
+    ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+  }
   if (latest_.load() != mine) return std::nullopt;
+  // The storage conversion is outside the lock: the next view's render need not wait for it.
   return ViewFrame{image.withStorage(request.samples.value_or(samples_.storage)), ms, mine};
 }
 
 void ViewSession::saveMix(const std::string& name,
                           const std::vector<std::pair<std::string, double>>& weights) {
-  if (options_.read_only) throw Error("view: started with --read-only: mixes are not saved");
   static const std::regex kName("[A-Za-z0-9_.-]{1,64}");
   if (!std::regex_match(name, kName))
     throw Error(fmt::format("mix name '{}' must be 1–64 letters, digits, '_', '-' or '.'", name));

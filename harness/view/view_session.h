@@ -66,13 +66,11 @@ class ViewSession {
   const nlohmann::json& sceneInfo() const { return scene_info_; }
   // A library spectrum as a light: {"name", "matrix"}; svr::Error for an unknown name.
   nlohmann::json libraryLight(const std::string& name) const;
-  // LightMixer's weights for a handle at (x, y) with these nodes (x, y, on).
-  static std::vector<double> mixerWeights(const std::vector<std::array<double, 3>>& nodes,
-                                          double x, double y);
   // The frame, or empty when a newer request superseded this one. svr::Error when it fails.
   std::optional<ViewFrame> render(const ViewRequest& request);
   // Adds the mix {light name: weight} to the scene file as light_mixes[name], adding library
-  // lights the scene lacks to its lights. svr::Error for bad names or weights.
+  // lights the scene lacks to its lights. svr::Error for bad names or weights. The server
+  // refuses to call it when started --read-only (403).
   void saveMix(const std::string& name, const std::vector<std::pair<std::string, double>>& weights);
 
   bool readOnly() const { return options_.read_only; }
