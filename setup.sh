@@ -17,6 +17,7 @@ PACKAGES=(
   clang libclang-rt-14-dev time  # the fuzz preset: clang++ and libFuzzer; CPU seconds (tests/fuzz)
   libvolpack1-dev  # bench/peers: VolPack, the shear-warp peer (small, static)
   libcpp-httplib-dev chromium  # svr view: its HTTP server; its page's tests in a real browser
+  libopenmpi-dev openmpi-bin  # svr-mpi: brick-distributed rendering (docs/distributed.md)
 )
 case "${1:-}" in
   "") ;;

@@ -16,9 +16,13 @@ class App;
 namespace svr {
 
 // What every command sees: the global flags, and where it leaves its exit status.
+class RenderDistribution;
+
 struct CommandContext {
   std::string data_dir;
   int status = 0;
+  // svr-mpi: the process's part in a distributed render (harness/render_distribution.h).
+  RenderDistribution* distribution = nullptr;
 };
 
 struct CommandEntry {

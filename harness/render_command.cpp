@@ -10,12 +10,16 @@
 #include <filesystem>
 #include <memory>
 #include <nlohmann/json.hpp>
+#include <sys/resource.h>
 
 #include "harness/command.h"
 #include "harness/image_files.h"
 #include "harness/interrupt.h"
 #include "harness/progress.h"
+#include "harness/render_distribution.h"
+#include "renderers/core/gradient_volume.h"
 #include "renderers/core/memory_budget.h"
+#include "renderers/core/volume_brick.h"
 #include "renderers/core/scene.h"
 #include "renderers/core/scene_model.h"
 #include "renderers/core/scene_render.h"
@@ -111,48 +115,106 @@ nlohmann::json renderReport(const RenderOptions& o, const Scene& scene, const Re
 
 }  // namespace
 
+namespace {
+
+// Runs one phase of the command. In a distributed render every process then agrees on failures
+// (RenderDistribution::agree), so a process that failed never leaves the others waiting in a
+// collective.
+template <class Body>
+void phase(RenderDistribution* distribution, Body&& body) {
+  if (!distribution) return body();
+  std::exception_ptr failure;
+  try {
+    body();
+  } catch (...) {
+    failure = std::current_exception();
+  }
+  distribution->agree(failure);
+}
+
+// Peak resident memory of this process so far.
+std::uint64_t peakResidentBytes() {
+  rusage usage{};
+  getrusage(RUSAGE_SELF, &usage);
+  return static_cast<std::uint64_t>(usage.ru_maxrss) * 1024;
+}
+
+nlohmann::json boxJson(const VoxelBox& box) {
+  return {{"lo", box.lo}, {"hi", box.hi}};
+}
+
+}  // namespace
+
 int runRender(const RenderOptions& o) {
   using clock = std::chrono::steady_clock;
+  RenderDistribution* const dist = o.distribution;
+  const bool writer = !dist || dist->writes();
+  const bool quiet = o.quiet || !writer;
   Timings t;
   const auto t_load = clock::now();
   const WavelengthGrid grid = WavelengthGrid::standard();
-  const auto library = SpectrumLibrary::load(o.data_dir, grid);
-  const auto observer = Observer::cie1931(o.data_dir, grid);
+  std::optional<SpectrumLibrary> library;
+  std::optional<Observer> observer;
+  Scene scene;
+  std::unique_ptr<Renderer> renderer;
   VolumeLoadOptions volume_options;
   if (o.memory_budget) volume_options.memory_budget = *o.memory_budget;
-  Scene scene = loadScene(o.scene, library, volume_options);
-  if (o.width) scene.width = *o.width;
-  if (o.height) scene.height = *o.height;
-  const auto renderer = makeRenderer(o.renderer);  // unknown names fail before any work
-  checkRendererOptions(scene.renderer_options, o.scene + ": render.options");
-  for (const auto& option : o.options)
-    applyOptionAssignment(scene.renderer_options, option, "--option");
+  if (dist) volume_options.brick = [dist](const Dims& whole) { return dist->brick(whole); };
+  phase(dist, [&] {
+    library = SpectrumLibrary::load(o.data_dir, grid);
+    observer = Observer::cie1931(o.data_dir, grid);
+    renderer = makeRenderer(o.renderer);  // unknown names fail before any work
+    if (dist && !renderer->info().supports.bricks)
+      throw Error(fmt::format("--renderer {}: this backend cannot render one brick of a "
+                              "distributed render; use raycast",
+                              o.renderer));
+    scene = loadScene(o.scene, *library, volume_options);
+    if (o.width) scene.width = *o.width;
+    if (o.height) scene.height = *o.height;
+    checkRendererOptions(scene.renderer_options, o.scene + ": render.options");
+    for (const auto& option : o.options)
+      applyOptionAssignment(scene.renderer_options, option, "--option");
+    if (!o.model.empty() && o.model != "auto") {  // a bad --model names the flag, not the scene
+      try {
+        const ModelName name = parseModelName(o.model);
+        if (name.kind == ModelKind::kSpectral && name.k > grid.count)
+          throw Error(fmt::format("spectral:{} asks for more bands than the {} samples of the "
+                                  "grid",
+                                  name.k, grid.count));
+      } catch (const Error& e) {
+        throw Error(fmt::format("--model '{}': {}", o.model, e.what()));
+      }
+    }
+  });
+  if (dist) {  // the classification's bins span the whole volume's values, on every brick
+    VolumeBrick brick = *scene.volume.brick();
+    brick.whole_range = dist->wholeRange(scene.volume.localRange());
+    scene.volume.setBrick(brick);
+  }
   t.load = msSince(t_load);
 
-  if (!o.model.empty() && o.model != "auto") {  // a bad --model names the flag, not the scene
-    try {
-      const ModelName name = parseModelName(o.model);
-      if (name.kind == ModelKind::kSpectral && name.k > grid.count)
-        throw Error(fmt::format("spectral:{} asks for more bands than the {} samples of the grid",
-                                name.k, grid.count));
-    } catch (const Error& e) {
-      throw Error(fmt::format("--model '{}': {}", o.model, e.what()));
-    }
-  }
   const auto t_classify = clock::now();
-  const SceneModel chosen = makeSceneModel(o.model.empty() ? scene.model : o.model, scene, observer);
+  std::optional<SceneModel> chosen_model;
+  ClassifiedVolume classified;
+  phase(dist, [&] {
+    chosen_model = makeSceneModel(o.model.empty() ? scene.model : o.model, scene, *observer);
+    classified = classifyScene(scene, *chosen_model->model);
+    // The light-independent image and every relit image, before any of them is allocated.
+    const std::uint64_t relit_count = scene.lights.size() + scene.mixes.size();
+    checkMemoryBudget(LightIndependentImage::bytesFor(scene.width, scene.height, classified.k,
+                                                      classified.t_channels) +
+                          3 * relit_count * std::uint64_t(scene.width) * scene.height,
+                      volume_options.memory_budget,
+                      fmt::format("{}: a {}×{} image of {} + {} channels and {} relit images",
+                                  o.scene, scene.width, scene.height, classified.k,
+                                  classified.t_channels, relit_count));
+  });
+  if (dist)  // and its gradients quantise as the whole volume's would
+    classified.brick->whole_field =
+        dist->wholeField(fieldRangeOver(classified, ownInStored(*classified.brick)));
+  const SceneModel& chosen = *chosen_model;
   const ColourModel& model = *chosen.model;
-  const ClassifiedVolume classified = classifyScene(scene, model);
   t.classify = msSince(t_classify);
-  // The light-independent image and every relit image, before any of them is allocated.
-  const std::uint64_t relit_count = scene.lights.size() + scene.mixes.size();
-  checkMemoryBudget(LightIndependentImage::bytesFor(scene.width, scene.height, classified.k,
-                                                    classified.t_channels) +
-                        3 * relit_count * std::uint64_t(scene.width) * scene.height,
-                    volume_options.memory_budget,
-                    fmt::format("{}: a {}×{} image of {} + {} channels and {} relit images",
-                                o.scene, scene.width, scene.height, classified.k,
-                                classified.t_channels, relit_count));
 
   const auto t_render = clock::now();
   LightIndependentImage image;
@@ -160,10 +222,21 @@ int runRender(const RenderOptions& o) {
   RenderRequest request = sceneRequest(scene, classified);
   request.memory_budget = volume_options.memory_budget;
   request.note = [&](const std::string& note) { notes.push_back(note); };
+  double brick_render_ms = 0, composite_ms = 0;
+  const auto renderFrame = [&](const ProgressFn& progress) {
+    const auto t0 = clock::now();
+    phase(dist, [&] { image = renderer->render(request, progress); });
+    brick_render_ms = msSince(t0);
+    if (dist) {
+      const auto t1 = clock::now();
+      image = dist->composite(image, request.camera, scene.volume.spacing());
+      composite_ms = msSince(t1);
+    }
+  };
   {
-    Progress progress("render", 100, o.quiet);
+    Progress progress("render", 100, quiet);
     int shown = 0;
-    image = renderer->render(request, [&](double f) {
+    renderFrame([&](double f) {
       while (shown < static_cast<int>(f * 100)) ++shown, progress.advance();
     });
   }
@@ -171,12 +244,22 @@ int runRender(const RenderOptions& o) {
   if (o.steady) {
     request.note = nullptr;  // the first frame said it all
     const auto t_steady = clock::now();
-    image = renderer->render(request, nullptr);
+    renderFrame(nullptr);
     t.steady = msSince(t_steady);
   }
-  if (!o.quiet)
+  nlohmann::json distributed;
+  if (dist) {
+    const VolumeBrick& brick = *scene.volume.brick();
+    distributed = dist->gather({{"own", boxJson(brick.own)},
+                                {"stored", boxJson(brick.stored)},
+                                {"volume_bytes", scene.volume.bytes()},
+                                {"render_ms", brick_render_ms},
+                                {"composite_ms", composite_ms},
+                                {"peak_resident_bytes", peakResidentBytes()}});
+  }
+  if (!writer) return 0;
+  if (!quiet)
     for (const auto& note : notes) fmt::print(stderr, "svr: note: {}\n", note);
-
   // From here on files are written: Ctrl-C waits for them to be complete (issue 9).
   const WritingOutputs writing;
   std::error_code mkdir_error;
@@ -187,7 +270,7 @@ int runRender(const RenderOptions& o) {
   const auto t_relight = clock::now();
   PostIlluminator post(model);
   if (scene.background) post.setBackground(model.project(*scene.background));
-  std::vector<RelitOutput> outputs = sceneOutputs(scene, model, observer);
+  std::vector<RelitOutput> outputs = sceneOutputs(scene, model, *observer);
   for (auto& out : outputs) {
     out.rgb.resize(3 * image.pixels());
     post.setLight(out.light);
@@ -203,16 +286,17 @@ int runRender(const RenderOptions& o) {
   for (const auto& out : outputs)
     writeSrgbPng(out.rgb, image.width(), image.height(), (fs::path(o.out_dir) / out.file).string());
   if (o.html) {
-    const PageLightContext context{model, observer, scene.background, image.transmittanceChannels()};
+    const PageLightContext context{model, *observer, scene.background, image.transmittanceChannels()};
     const SampleChoice samples = chooseSamples(context, scene, image);
     const nlohmann::json info = pageSceneInfo(context, scene, chosen, renderer->name(),
                                               orbitViewOf(scene.camera), samples);
     writeTextAtomically((fs::path(o.out_dir) / "view.html").string(),
                         standalonePage(info, image.withStorage(samples.storage)));
   }
-  const nlohmann::json report = renderReport(o, scene, *renderer, chosen, image, outputs, t, notes);
+  nlohmann::json report = renderReport(o, scene, *renderer, chosen, image, outputs, t, notes);
+  if (dist) report["distributed"] = {{"processes", distributed.size()}, {"per_process", distributed}};
   writeTextAtomically((fs::path(o.out_dir) / "render.json").string(), report.dump(1) + "\n");
-  if (!o.quiet)
+  if (!quiet)
     fmt::print("{}: {} with {} ({}), {}×{}: load {:.0f} ms, classify {:.0f} ms, render {:.0f} ms{}, "
                "relight {:.2f} ms/light → {}\n",
                o.scene, renderer->name(), model.name(), chosen.description, image.width(),
@@ -270,6 +354,7 @@ CommandEntry render() {
               if (o->width) checkImageSize("render", "--width", *o->width);
               if (o->height) checkImageSize("render", "--height", *o->height);
               installInterruptHandler();
+              o->distribution = context.distribution;
               context.status = runRender(*o);
             });
           }};

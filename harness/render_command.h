@@ -10,6 +10,8 @@
 
 namespace svr {
 
+class RenderDistribution;
+
 struct RenderOptions {
   std::string data_dir;
   std::string scene;
@@ -23,6 +25,8 @@ struct RenderOptions {
   std::optional<std::uint64_t> memory_budget;
   bool quiet = false;
   bool steady = false;  // render the view again and report that frame's time too
+  // A distributed render (svr-mpi): this process's part in it; null for svr render.
+  RenderDistribution* distribution = nullptr;
 };
 
 int runRender(const RenderOptions& options);

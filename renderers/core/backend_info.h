@@ -19,6 +19,9 @@ struct BackendCapabilities {
   bool spectral_transmittance = true;  // k-channel T (else scalar absorbers only)
   int max_channels = 128;              // the largest k
   bool needs_gl = false;               // needs an OpenGL context (OSMesa or EGL)
+  // Renders one brick of a distributed render (ClassifiedVolume::brick): samples the whole
+  // grid's lattice and takes only the brick's own samples.
+  bool bricks = false;
 };
 
 struct BackendInfo {

@@ -137,6 +137,7 @@ ClassifiedVolume classify(const Volume& volume, const TransferFunction& tf,
   cv.t_channels = tf.achromatic() ? 1 : k;
   cv.labels = tf.kind == TransferFunction::Kind::kLabels;
   cv.dims = volume.dims();
+  cv.brick = volume.brick();
   cv.spacing = volume.spacing();
   cv.step_world = options.step_world;
   cv.values = volume.toFloat();

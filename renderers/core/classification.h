@@ -46,6 +46,9 @@ struct ClassifiedVolume {
   std::vector<float> shading_field;
   const std::vector<float>& shadingField() const { return labels ? shading_field : values; }
   double step_world = 1.0;
+  // A distributed render's brick (the volume's): dims and the fields above are the brick's
+  // stored voxels; backends place them in the whole grid and take only the brick's own samples.
+  std::optional<VolumeBrick> brick;
 
   // Empty-space skipping: the volume in blocks of kBlock³ voxels (4: on the engine at 512², 4³
   // blocks took 14 % less time per frame than 8³ and 9 % less than 2³); a block is empty when nothing

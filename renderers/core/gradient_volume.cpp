@@ -41,6 +41,36 @@ inline std::int16_t quantise(float v) {
 
 }  // namespace
 
+FieldRange fieldRangeOver(const ClassifiedVolume& cv, const VoxelBox& box) {
+  const Dims& d = cv.dims;
+  const float* f = cv.shadingField().data();
+  const std::size_t row_voxels = d[0];
+  const float half_inv[3] = {static_cast<float>(0.5 / cv.spacing.x),
+                             static_cast<float>(0.5 / cv.spacing.y),
+                             static_cast<float>(0.5 / cv.spacing.z)};
+  const Dims size = box.size();
+  const int rows = size[1] * size[2];
+  const bool parallel = static_cast<std::int64_t>(rows) * d[0] >= kParallelVoxels;
+  float lo = INFINITY, hi = -INFINITY, largest = 0.f;
+#pragma omp parallel reduction(min : lo) reduction(max : hi, largest) if (parallel)
+  {
+    std::vector<float> g(3 * row_voxels);
+#pragma omp for schedule(static)
+    for (int r = 0; r < rows; ++r) {
+      const int y = box.lo[1] + r % size[1], z = box.lo[2] + r / size[1];
+      rowGradients(f, d, y, z, half_inv, g.data(), g.data() + row_voxels,
+                   g.data() + 2 * row_voxels);
+      const float* field = f + row_voxels * (static_cast<std::size_t>(z) * d[1] + y);
+      for (int x = box.lo[0]; x < box.hi[0]; ++x) {
+        for (int a = 0; a < 3; ++a) largest = std::max(largest, std::abs(g[a * row_voxels + x]));
+        lo = std::min(lo, field[x]);
+        hi = std::max(hi, field[x]);
+      }
+    }
+  }
+  return {lo, hi, largest};
+}
+
 GradientVolume buildGradientVolume(const ClassifiedVolume& cv) {
   const Dims& d = cv.dims;
   const float* f = cv.shadingField().data();
@@ -52,25 +82,13 @@ GradientVolume buildGradientVolume(const ClassifiedVolume& cv) {
   GradientVolume out;
   out.dims = d;
   const bool parallel = static_cast<std::int64_t>(rows) * d[0] >= kParallelVoxels;
-  // Two passes: the field's range and the largest gradient component set the scales, then
-  // every voxel is quantised to them (recomputing a row is cheaper than keeping 12 bytes a
-  // voxel in between).
-  float lo = INFINITY, hi = -INFINITY, largest = 0.f;
-#pragma omp parallel reduction(min : lo) reduction(max : hi, largest) if (parallel)
-  {
-    std::vector<float> g(3 * row_voxels);
-#pragma omp for schedule(static)
-    for (int r = 0; r < rows; ++r) {
-      rowGradients(f, d, r % d[1], r / d[1], half_inv, g.data(), g.data() + row_voxels,
-                   g.data() + 2 * row_voxels);
-      for (float v : g) largest = std::max(largest, std::abs(v));
-      const float* field = f + row_voxels * r;
-      for (std::size_t x = 0; x < row_voxels; ++x) {
-        lo = std::min(lo, field[x]);
-        hi = std::max(hi, field[x]);
-      }
-    }
-  }
+  // The field's range and the largest gradient component set the scales (a brick takes the
+  // whole volume's, so that every brick quantises alike), then every voxel is quantised to
+  // them (recomputing a row is cheaper than keeping 12 bytes a voxel in between).
+  const FieldRange range = cv.brick && cv.brick->whole_field
+                               ? *cv.brick->whole_field
+                               : fieldRangeOver(cv, {{0, 0, 0}, d});
+  const float lo = range.lo, hi = range.hi, largest = range.largest;
   const float gscale = largest > 0.f ? largest / 32767.f : 1.f;
   const float vscale = hi > lo ? (hi - lo) / 65534.f : 1.f;
   out.scale[0] = vscale;

@@ -43,6 +43,10 @@ struct GradientVolume {
 // raycaster's clamped sampling gives), in world units, with the field itself; in parallel.
 GradientVolume buildGradientVolume(const ClassifiedVolume& cv);
 
+// The shading field's range and largest gradient component over the voxels of `box` (cv's
+// own index space) — what a brick contributes to the whole volume's quantisation.
+FieldRange fieldRangeOver(const ClassifiedVolume& cv, const VoxelBox& box);
+
 // The gradients of cv, built on first use and kept with the classification (its DerivedCache).
 std::shared_ptr<const GradientVolume> gradientsOf(const ClassifiedVolume& cv);
 

@@ -4,6 +4,7 @@
 
 #include "renderers/core/memory_budget.h"
 #include "renderers/core/procedural_volume.h"
+#include "renderers/core/volume_brick.h"
 #include "spectral/error.h"
 
 namespace svr {
@@ -87,6 +88,8 @@ SceneVolume loadSceneVolume(const JsonReader& spec, const fs::path& base_dir,
   }
   spec.rejectUnknownKeys();
   out.source = fmt::format("procedural {} ({}³)", kind, out.volume.dims()[0]);
+  // A brick of a procedural volume: made whole (closed forms are cheap), then cut.
+  if (options.brick) out.volume = cropToBrick(out.volume, options.brick(out.volume.dims()));
   return out;
 }
 

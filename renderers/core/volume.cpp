@@ -142,11 +142,16 @@ double Volume::value(std::size_t i) const {
 }
 
 glm::dvec3 Volume::extent() const {
-  return spacing_ * glm::dvec3(dims_[0] - 1, dims_[1] - 1, dims_[2] - 1);
+  const Dims& d = brick_ ? brick_->whole : dims_;
+  return spacing_ * glm::dvec3(d[0] - 1, d[1] - 1, d[2] - 1);
 }
 
 glm::dvec3 Volume::worldPosition(double x, double y, double z) const {
-  return (glm::dvec3(x, y, z) - 0.5 * glm::dvec3(dims_[0] - 1, dims_[1] - 1, dims_[2] - 1)) *
+  const Dims& d = brick_ ? brick_->whole : dims_;
+  const glm::dvec3 origin = brick_ ? glm::dvec3(brick_->stored.lo[0], brick_->stored.lo[1],
+                                                brick_->stored.lo[2])
+                                   : glm::dvec3(0.0);
+  return (glm::dvec3(x, y, z) + origin - 0.5 * glm::dvec3(d[0] - 1, d[1] - 1, d[2] - 1)) *
          spacing_;
 }
 

@@ -8,9 +8,12 @@
 #include <cstddef>
 #include <cstdint>
 #include <glm/vec3.hpp>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
+
+#include "renderers/core/brick_box.h"
 
 namespace svr {
 
@@ -23,8 +26,6 @@ std::size_t bytesPerVoxel(ScalarType type);
 enum class Endian { kLittle, kBig };
 std::string toString(Endian endian);
 Endian nativeEndian();
-
-using Dims = std::array<int, 3>;
 
 // Loops over fewer voxels than this run on one thread: a parallel region costs a fork and a
 // join, and on a machine busy with other work (a build beside the renderer) a join can wait a
@@ -60,10 +61,18 @@ class Volume {
   std::size_t index(int x, int y, int z) const {
     return (static_cast<std::size_t>(z) * dims_[1] + y) * dims_[0] + x;
   }
-  // Smallest and largest voxel value.
-  std::pair<double, double> valueRange() const { return range_; }
-  // World-space size of the sampled box: spacing ⊙ (dims − 1).
+  // Smallest and largest voxel value (of the whole volume, for a brick that knows it).
+  std::pair<double, double> valueRange() const {
+    return brick_ && brick_->whole_range ? *brick_->whole_range : range_;
+  }
+  // World-space size of the sampled box: spacing ⊙ (dims − 1), of the whole grid for a brick.
   glm::dvec3 extent() const;
+
+  // A distributed render's brick: this volume holds brick.stored of a larger grid (the voxels'
+  // own range, before the whole volume's is known, is localRange()).
+  const std::optional<VolumeBrick>& brick() const { return brick_; }
+  void setBrick(VolumeBrick brick) { brick_ = std::move(brick); }
+  std::pair<double, double> localRange() const { return range_; }
   glm::dvec3 worldPosition(double x, double y, double z) const;
 
   // Every voxel as float, x fastest (what the renderers sample).
@@ -76,6 +85,7 @@ class Volume {
   std::vector<std::byte> data_;
   std::string source_;
   std::pair<double, double> range_{0.0, 0.0};
+  std::optional<VolumeBrick> brick_;
 };
 
 }  // namespace svr

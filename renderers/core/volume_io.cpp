@@ -78,6 +78,18 @@ Volume loadVolume(const std::string& path, const VolumeLoadOptions& options) {
   const VolumeSource source = openSource(path, options);
   const VolumeHeader& h = source.header;
   if (h.encoding == "raw") detail::checkRawPayloadSize(source);
+  if (options.brick) {
+    const VolumeBrick brick = options.brick(h.dims);
+    const Dims size = brick.stored.size();
+    checkMemoryBudget(brick.stored.voxels() * bytesPerVoxel(h.type), options.memory_budget,
+                      fmt::format("{}: a brick of {}", path, describeShape(size, h.type)));
+    std::vector<std::byte> bytes = detail::readPayloadBox(source, brick.stored);
+    const std::size_t width = bytesPerVoxel(h.type);
+    if (width > 1 && h.endian != nativeEndian()) swapBytes(bytes, width);
+    Volume volume(size, h.spacing, h.type, std::move(bytes), path);
+    volume.setBrick(brick);
+    return volume;
+  }
   checkMemoryBudget(h.data_bytes, options.memory_budget,
                     fmt::format("{}: {}", path, describeShape(h.dims, h.type)));
   std::vector<std::byte> bytes = detail::readPayload(source);

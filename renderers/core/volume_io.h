@@ -5,6 +5,7 @@
 // checked before a byte of voxel data is allocated. Voxels are converted to native byte order.
 
 #include <cstdint>
+#include <functional>
 #include <glm/vec3.hpp>
 #include <optional>
 #include <string>
@@ -46,6 +47,9 @@ struct VolumeLoadOptions {
   std::uint64_t memory_budget = defaultMemoryBudget();
   // Layout for files that are not .nrrd/.nhdr/.mhd/.mha; such files are refused without it.
   std::optional<RawLayout> raw;
+  // A distributed render's process reads one brick: given the file's dims, the brick (and so
+  // the voxels, brick.stored) to read. Empty: the whole volume.
+  std::function<VolumeBrick(const Dims&)> brick;
 };
 
 // Parses the header (and, for raw encodings, checks the data file's size against it). Throws
@@ -53,7 +57,8 @@ struct VolumeLoadOptions {
 // that is missing or outside the header's folder, or a size mismatch. Does not check the budget.
 VolumeHeader readVolumeHeader(const std::string& path, const VolumeLoadOptions& options = {});
 
-// readVolumeHeader, the memory budget check, then the voxels. Also throws svr::Error for
+// readVolumeHeader, the memory budget check, then the voxels (only the brick's, when options say
+// one: the Volume then holds brick.stored and carries the brick). Also throws svr::Error for
 // truncated or corrupt compressed streams and non-finite float voxels.
 Volume loadVolume(const std::string& path, const VolumeLoadOptions& options = {});
 

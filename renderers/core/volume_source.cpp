@@ -11,6 +11,7 @@
 #include <cstring>
 #include <filesystem>
 #include <memory>
+#include <span>
 #include <sstream>
 
 #include "renderers/core/memory_budget.h"
@@ -37,7 +38,65 @@ std::string expectation(const VolumeHeader& header) {
 // header), after dropping `source.skip_decompressed` bytes. Concatenated gzip members are read
 // as one stream, as gzip(1) does. The stream must end, with a good checksum, exactly where the
 // voxels end: a short stream, a stream without its trailer and a longer stream are all errors.
-void inflatePayload(std::FILE* file, const VolumeSource& source, std::vector<std::byte>& out) {
+// Copies what falls inside `box` of the payload bytes [at, at + n) (x fastest, dims of the whole
+// grid, `w` bytes a voxel) into `out`, the box's voxels x fastest.
+void copyBoxPart(const Dims& dims, const VoxelBox& box, std::size_t w, std::uint64_t at,
+                 const unsigned char* bytes, std::size_t n, std::byte* out) {
+  const std::uint64_t row_bytes = static_cast<std::uint64_t>(dims[0]) * w;
+  const Dims size = box.size();
+  const std::uint64_t end = at + n;
+  for (std::uint64_t pos = at; pos < end;) {
+    const std::uint64_t row = pos / row_bytes;
+    const std::uint64_t row_start = row * row_bytes, row_end = row_start + row_bytes;
+    const int y = static_cast<int>(row % dims[1]), z = static_cast<int>(row / dims[1]);
+    if (y >= box.lo[1] && y < box.hi[1] && z >= box.lo[2] && z < box.hi[2]) {
+      const std::uint64_t lo = std::max(pos, row_start + box.lo[0] * w);
+      const std::uint64_t hi = std::min(end, row_start + box.hi[0] * w);
+      if (lo < hi) {
+        const std::uint64_t dest_row =
+            (static_cast<std::uint64_t>(z - box.lo[2]) * size[1] + (y - box.lo[1])) * size[0] * w;
+        std::memcpy(out + dest_row + (lo - row_start - box.lo[0] * w), bytes + (lo - at),
+                    static_cast<std::size_t>(hi - lo));
+      }
+    }
+    pos = std::min(end, row_end);
+  }
+}
+
+// Where decompressed voxel bytes go: window(at) is room for the bytes from stream offset `at`
+// (after the dropped header bytes), commit(at, n) says n of them were written there.
+struct PayloadSink {
+  virtual ~PayloadSink() = default;
+  virtual std::span<unsigned char> window(std::uint64_t at) = 0;
+  virtual void commit(std::uint64_t at, std::size_t n) {}
+};
+
+// The whole payload, inflated straight into its vector.
+struct WholeSink final : PayloadSink {
+  std::vector<std::byte>& out;
+  explicit WholeSink(std::vector<std::byte>& o) : out(o) {}
+  std::span<unsigned char> window(std::uint64_t at) override {
+    return {reinterpret_cast<unsigned char*>(out.data()) + at, out.size() - at};
+  }
+};
+
+// A box of the payload: bytes are inflated into a chunk and the box's parts of each voxel row
+// copied out.
+struct BoxSink final : PayloadSink {
+  const Dims dims;
+  const VoxelBox box;
+  const std::size_t voxel_bytes;
+  std::vector<std::byte>& out;
+  std::vector<unsigned char> chunk = std::vector<unsigned char>(std::size_t{1} << 20);
+  BoxSink(const Dims& d, const VoxelBox& b, std::size_t w, std::vector<std::byte>& o)
+      : dims(d), box(b), voxel_bytes(w), out(o) {}
+  std::span<unsigned char> window(std::uint64_t) override { return chunk; }
+  void commit(std::uint64_t at, std::size_t n) override {
+    copyBoxPart(dims, box, voxel_bytes, at, chunk.data(), n, out.data());
+  }
+};
+
+void inflatePayload(std::FILE* file, const VolumeSource& source, PayloadSink& sink) {
   const VolumeHeader& h = source.header;
   const std::string stream = fmt::format("the {} stream in '{}'", h.encoding, h.data_file);
   z_stream zs{};
@@ -101,19 +160,23 @@ void inflatePayload(std::FILE* file, const VolumeSource& source, std::vector<std
   };
   const auto inputExhausted = [&] { return zs.avail_in == 0 && input_done; };
 
-  while (skip > 0 || filled < out.size()) {
+  const std::uint64_t total = h.data_bytes;
+  while (skip > 0 || filled < total) {
     Step s{};
     if (skip > 0) {
       s = step(scratch.data(),
                static_cast<std::size_t>(std::min<std::uint64_t>(skip, scratch.size())));
       skip -= s.produced;
     } else {
-      s = step(reinterpret_cast<unsigned char*>(out.data()) + filled, out.size() - filled);
+      const std::span<unsigned char> room = sink.window(filled);
+      s = step(room.data(), static_cast<std::size_t>(std::min<std::uint64_t>(room.size(),
+                                                                             total - filled)));
+      sink.commit(filled, s.produced);
       filled += s.produced;
     }
     if (s.stalled && inputExhausted()) throw truncated();
     ended = s.code == Z_STREAM_END;
-    if (ended && (skip > 0 || filled < out.size())) {
+    if (ended && (skip > 0 || filled < total)) {
       refill();
       if (zs.avail_in == 0) throw truncated();
       inflateReset(&zs);  // the next gzip member
@@ -238,8 +301,46 @@ std::vector<std::byte> readPayload(const VolumeSource& source) {
       throw Error(fmt::format("{}: {} but the data file '{}' holds {} bytes", h.path,
                               expectation(h), h.data_file, got));
   } else {
-    inflatePayload(file.get(), source, out);
+    WholeSink sink(out);
+    inflatePayload(file.get(), source, sink);
   }
+  return out;
+}
+
+std::vector<std::byte> readPayloadBox(const VolumeSource& source, const VoxelBox& box) {
+  const VolumeHeader& h = source.header;
+  const FilePtr file(std::fopen(h.data_file.c_str(), "rb"));
+  if (!file)
+    throw Error(fmt::format("{}: cannot open data file '{}': {}", h.path, h.data_file,
+                            std::strerror(errno)));
+  const std::size_t w = bytesPerVoxel(h.type);
+  std::vector<std::byte> out(box.voxels() * w);
+  if (h.encoding != "raw") {
+    if (source.offset > static_cast<std::uint64_t>(INT64_MAX) ||
+        fseeko(file.get(), static_cast<off_t>(source.offset), SEEK_SET) != 0)
+      throw Error(
+          fmt::format("{}: cannot seek to byte {} of '{}'", h.path, source.offset, h.data_file));
+    BoxSink sink(h.dims, box, w, out);
+    inflatePayload(file.get(), source, sink);
+    return out;
+  }
+  // Raw: a seek and a read per run of contiguous bytes (a row of the box, or whole slabs of
+  // rows when the box spans the rows).
+  const Dims size = box.size();
+  const bool whole_rows = size[0] == h.dims[0];
+  const std::size_t run = w * size[0] * (whole_rows ? size[1] : 1);
+  std::byte* dest = out.data();
+  for (int z = box.lo[2]; z < box.hi[2]; ++z)
+    for (int y = box.lo[1]; y < box.hi[1]; y += whole_rows ? size[1] : 1) {
+      const std::uint64_t at =
+          source.offset +
+          ((static_cast<std::uint64_t>(z) * h.dims[1] + y) * h.dims[0] + box.lo[0]) * w;
+      if (fseeko(file.get(), static_cast<off_t>(at), SEEK_SET) != 0 ||
+          std::fread(dest, 1, run, file.get()) != run)
+        throw Error(fmt::format("{}: cannot read {} bytes at byte {} of '{}' (voxel row y {} z {})",
+                                h.path, run, at, h.data_file, y, z));
+      dest += run;
+    }
   return out;
 }
 

@@ -35,6 +35,10 @@ void checkRawPayloadSize(const VolumeSource& source);
 // The payload in file byte order, exactly header.data_bytes long. Throws svr::Error for short
 // files, truncated or corrupt compressed streams and streams that hold more than expected.
 std::vector<std::byte> readPayload(const VolumeSource& source);
+// Only the voxels in `box` (of header.dims), x fastest, in file byte order. Raw payloads are
+// read with a seek per run of contiguous bytes; compressed ones are inflated as a stream (all
+// of it, so that its checksum is checked as for a whole read) keeping only the box.
+std::vector<std::byte> readPayloadBox(const VolumeSource& source, const VoxelBox& box);
 
 // Readers per format (nrrd_header.cpp, metaimage_header.cpp). A header may be of any length
 // within `budget` bytes (and 1 MiB always) (the memory budget: the format sets no limit, and comments or key/value

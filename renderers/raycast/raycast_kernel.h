@@ -245,6 +245,60 @@ SVR_RAYCAST_INLINE long firstSamplePast(int shift, const float p[3], const float
   return std::max(static_cast<long>(std::ceil((target - first) / step)), i + 1);
 }
 
+// What a brick changes in the ray loop: the lattice of the whole grid, the range of sample
+// indices that can lie in its own box, the ownership test, and the local origin. For a whole
+// volume it is the identity (owns everything, origin 0).
+struct BrickClip {
+  bool bricked;
+  Dims whole;
+  float origin[3] = {0.f, 0.f, 0.f};
+  // Own box in whole-grid voxel coordinates; open to ±∞ at the grid's faces, so that samples a
+  // whole render clamps into the grid are owned too.
+  float lo[3], hi[3];
+
+  SVR_RAYCAST_TARGET explicit BrickClip(const ClassifiedVolume& cv)
+      : bricked(cv.brick.has_value()), whole(bricked ? cv.brick->whole : cv.dims) {
+    for (int a = 0; a < 3; ++a) {
+      lo[a] = -INFINITY, hi[a] = INFINITY;
+      if (!bricked) continue;
+      const VolumeBrick& b = *cv.brick;
+      origin[a] = static_cast<float>(b.stored.lo[a]);
+      if (b.own.lo[a] > 0) lo[a] = static_cast<float>(b.own.lo[a]);
+      if (b.own.hi[a] < whole[a]) hi[a] = static_cast<float>(b.own.hi[a]);
+    }
+  }
+
+  SVR_RAYCAST_INLINE bool owns(const float p[3]) const {
+    return p[0] >= lo[0] && p[0] < hi[0] && p[1] >= lo[1] && p[1] < hi[1] && p[2] >= lo[2] &&
+           p[2] < hi[2];
+  }
+
+  // The sample indices [begin, end) of the ray (in the grid over [t0, t1], first sample at
+  // t0 + step/2) that may be owned: all of them for a whole volume; for a brick, those within a
+  // sample of the ray's interval in the own box (owns() decides at the edges). False: none.
+  SVR_RAYCAST_TARGET bool range(const glm::dvec3& o, const glm::dvec3& d, double t0, double t1,
+                                double step, long& begin, long& end) const {
+    const double first = t0 + 0.5 * step;
+    begin = 0, end = static_cast<long>(std::ceil((t1 - first) / step));
+    if (!bricked) return end > 0;
+    double ta = t0, tb = t1;
+    for (int a = 0; a < 3; ++a) {
+      const double l = std::isfinite(lo[a]) ? lo[a] : -1e300, h = std::isfinite(hi[a]) ? hi[a] : 1e300;
+      if (std::abs(d[a]) < 1e-300) {
+        if (o[a] < l - 1.0 || o[a] > h + 1.0) return false;
+        continue;
+      }
+      double u = (l - o[a]) / d[a], v = (h - o[a]) / d[a];
+      if (u > v) std::swap(u, v);
+      ta = std::max(ta, u), tb = std::min(tb, v);
+    }
+    if (tb < ta) return false;
+    begin = std::max(begin, static_cast<long>(std::floor((ta - first) / step)) - 1);
+    end = std::min(end, static_cast<long>(std::ceil((tb - first) / step)) + 2);
+    return end > begin;
+  }
+};
+
 template <int K, bool kSpectralT, bool kPrecomputedGradients>
 SVR_RAYCAST_TARGET void traceTile(const TileJob& job) {
   const ClassifiedVolume& cv = *job.volume;
@@ -264,7 +318,11 @@ SVR_RAYCAST_TARGET void traceTile(const TileJob& job) {
   const float half_inv_spacing[3] = {static_cast<float>(0.5 * inv_spacing.x),
                                      static_cast<float>(0.5 * inv_spacing.y),
                                      static_cast<float>(0.5 * inv_spacing.z)};
-  const glm::dvec3 centre = 0.5 * glm::dvec3(dims[0] - 1, dims[1] - 1, dims[2] - 1);
+  // A brick samples the whole grid's lattice and takes only its own samples (core/brick_box.h),
+  // at local positions p − origin (exact: p ≥ origin ≥ 0 and both are on float's grid there).
+  const BrickClip brick(cv);
+  const Dims& whole = brick.whole;
+  const glm::dvec3 centre = 0.5 * glm::dvec3(whole[0] - 1, whole[1] - 1, whole[2] - 1);
   const double step = cv.step_world;
   const float threshold = static_cast<float>(req.termination);
   const std::size_t pixels = job.image->pixels();
@@ -282,7 +340,8 @@ SVR_RAYCAST_TARGET void traceTile(const TileJob& job) {
       const glm::dvec3 o = ray.origin * inv_spacing + centre;
       const glm::dvec3 d = ray.direction * inv_spacing;  // voxels per world unit
       double t0, t1;
-      if (clipToGrid(dims, o, d, t0, t1)) {
+      long i_begin = 0, i_end = 0;
+      if (clipToGrid(whole, o, d, t0, t1) && brick.range(o, d, t0, t1, step, i_begin, i_end)) {
         const glm::dvec3 view = -ray.direction;
         const glm::dvec3 light = req.light_direction ? *req.light_direction : view;
         phong_setup.setDirections(light, glm::normalize(light + view));
@@ -294,11 +353,17 @@ SVR_RAYCAST_TARGET void traceTile(const TileJob& job) {
           inv_d[a] = std::abs(df[a]) > 1e-30f ? 1.f / df[a] : INFINITY;
         }
         const float first_f = static_cast<float>(first), step_f = static_cast<float>(step);
-        const long samples = static_cast<long>(std::ceil((t1 - first) / step));
         long occupied_until = 0;
-        for (long i = 0; i < samples;) {
+        for (long i = i_begin; i < i_end;) {
           const float t = first_f + static_cast<float>(i) * step_f;
-          const float p[3] = {of[0] + t * df[0], of[1] + t * df[1], of[2] + t * df[2]};
+          float p[3] = {of[0] + t * df[0], of[1] + t * df[1], of[2] + t * df[2]};
+          if (brick.bricked) {
+            if (!brick.owns(p)) {
+              ++i;
+              continue;
+            }
+            for (int a = 0; a < 3; ++a) p[a] -= brick.origin[a];
+          }
           // Empty space: jump past the largest empty block; in an occupied block, look again
           // only once the ray has left it.
           if (req.empty_space_skipping && i >= occupied_until) {

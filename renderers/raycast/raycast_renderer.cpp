@@ -40,7 +40,9 @@ std::shared_ptr<const GradientVolume> gradientsFor(const RenderRequest& req,
   // 560²). A caller that renders many frames of one classification (a viewer, the benches)
   // asks for "precomputed": the gradients are built once and kept with the classification.
   constexpr double kVoxelsPerPixel = 24.0;
-  const double voxels = static_cast<double>(cv.dims[0]) * cv.dims[1] * cv.dims[2];
+  // A brick decides as the whole volume would, so that it renders the same samples the same way.
+  const Dims& d = cv.brick ? cv.brick->whole : cv.dims;
+  const double voxels = static_cast<double>(d[0]) * d[1] * d[2];
   if (mode == "auto" && static_cast<double>(req.width) * req.height * kVoxelsPerPixel < voxels)
     return nullptr;
   return gradientsWithinBudget(req, mode == "precomputed", "raycast");
@@ -52,7 +54,8 @@ const BackendInfo& RaycastRenderer::info() const {
   static const BackendInfo info{
       "raycast",
       "a ray per pixel, trilinear samples, Phong; the reference backend",
-      {.perspective = true, .spectral_transmittance = true, .max_channels = raycast::kMaxChannels},
+      {.perspective = true, .spectral_transmittance = true, .max_channels = raycast::kMaxChannels,
+       .bricks = true},
       {OptionSpec::choice("gradients", {"auto", "precomputed", "on-the-fly"},
                           "normals from gradients precomputed at the voxels (8 bytes a voxel, "
                           "kept with the classification) or central differences per sample; "
