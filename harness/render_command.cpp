@@ -164,10 +164,14 @@ int runRender(const RenderOptions& o) {
     library = SpectrumLibrary::load(o.data_dir, grid);
     observer = Observer::cie1931(o.data_dir, grid);
     renderer = makeRenderer(o.renderer);  // unknown names fail before any work
-    if (dist && !renderer->info().supports.bricks)
+    if (dist && !renderer->info().supports.bricks) {
+      std::vector<std::string> able;
+      for (const std::string& name : rendererNames())
+        if (makeRenderer(name)->info().supports.bricks) able.push_back(name);
       throw Error(fmt::format("--renderer {}: this backend cannot render one brick of a "
-                              "distributed render; use raycast",
-                              o.renderer));
+                              "distributed render; use {}",
+                              o.renderer, fmt::join(able, " or ")));
+    }
     scene = loadScene(o.scene, *library, volume_options);
     if (o.width) scene.width = *o.width;
     if (o.height) scene.height = *o.height;
@@ -230,6 +234,7 @@ int runRender(const RenderOptions& o) {
     if (dist) {
       const auto t1 = clock::now();
       image = dist->composite(image, request.camera, scene.volume.spacing());
+      if (writer) image = renderer->finishBricks(std::move(image), request);
       composite_ms = msSince(t1);
     }
   };

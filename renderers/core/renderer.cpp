@@ -29,9 +29,7 @@ LightIndependentImage Renderer::render(const RenderRequest& request,
                                      request.volume.t_channels))
     throw Error(*why);
   if (request.volume.brick && !backend.supports.bricks)
-    throw Error(fmt::format("{} cannot render one brick of a distributed render; use a backend "
-                            "that can (raycast)",
-                            backend.name));
+    throw Error(fmt::format("{} cannot render one brick of a distributed render", backend.name));
   const BackendOptions options = readBackendOptions(backend.options, request.options,
                                                     backend.name, request.options_source);
   const ClassifiedVolume& cv = request.volume;

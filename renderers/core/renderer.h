@@ -58,6 +58,15 @@ class Renderer {
   LightIndependentImage render(const RenderRequest& request,
                                const ProgressFn& progress = nullptr) const;
 
+  // Bricks of a distributed render (request.volume.brick) composite in the space render()
+  // returns them in; this makes the final image from the composited one. The final image
+  // itself for most backends (the default); shear-warp composites its sheared intermediate
+  // images, as the over operator does not commute with the warp's resampling, and warps once.
+  virtual LightIndependentImage finishBricks(LightIndependentImage composited,
+                                             const RenderRequest& request) const {
+    return composited;
+  }
+
  protected:
   // Bytes the backend allocates beyond the output image for this request (intermediate
   // images, sheet buffers), for the memory-budget check.

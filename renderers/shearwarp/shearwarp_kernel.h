@@ -67,6 +67,14 @@ struct CompositeJob {
   const ShadingTable* shading = nullptr;
   const PowerTable* opacity_power = nullptr;
   const PowerTable* transmission_power = nullptr;
+  // A brick of a distributed render (core/brick_box.h): the view is the whole grid's; slices
+  // and in-slice positions are placed by the brick's origin (the index of its first stored
+  // voxel), and only its own samples are taken — slices [slice_begin, slice_end) of the
+  // encoding and in-slice positions within [lo, hi) (whole-grid voxel coordinates, open to ±∞
+  // at the grid's faces). A whole volume: origin 0, every slice, no bounds.
+  int origin[3] = {0, 0, 0};
+  double lo[3] = {-INFINITY, -INFINITY, -INFINITY}, hi[3] = {INFINITY, INFINITY, INFINITY};
+  int slice_begin = 0, slice_end = 0;
 };
 
 inline int nextLive(int* links, int u) {
@@ -131,18 +139,33 @@ template <class PerRow>
   const int width = job.image->width;
   const int n_i = enc.rowLength(), n_j = enc.rowCount();
   const double inv_scale = 1.0 / f.scale;
-  const double qj = v * inv_scale + f.offset_j + f.shear_j * slice;
+  // Positions are computed in the whole grid, as a whole render computes them, then moved to
+  // the brick's stored voxels (exact: integer offsets of doubles a few thousand voxels wide).
+  const int whole_slice = slice + job.origin[f.axis];
+  const double qj_whole = v * inv_scale + f.offset_j + f.shear_j * whole_slice;
+  if (!(qj_whole >= job.lo[f.axis_j] && qj_whole < job.hi[f.axis_j])) return;
+  const double qj = qj_whole - job.origin[f.axis_j];
   if (!(qj >= 0.0 && qj <= n_j - 1)) return;
   const int j0 = std::min(static_cast<int>(qj), n_j - 2);
   const auto sample = perRow(j0, static_cast<float>(qj - j0));
-  const double base_i = f.offset_i + f.shear_i * slice;
+  const double base_i = f.offset_i + f.shear_i * whole_slice;
+  const int oi = job.origin[f.axis_i];
+  // The brick's own pixels along the scanline.
+  const int own_begin = std::isfinite(job.lo[f.axis_i])
+                            ? firstPixel(job.lo[f.axis_i], base_i, inv_scale, f.scale, false)
+                            : 0;
+  const int own_end = std::isfinite(job.hi[f.axis_i])
+                          ? firstPixel(job.hi[f.axis_i], base_i, inv_scale, f.scale, false)
+                          : width;
   for (const CellRun& run : enc.runs(slice, j0)) {
-    const int u_begin = std::max(firstPixel(run.begin, base_i, inv_scale, f.scale, false), 0);
+    const int u_begin = std::max(
+        {firstPixel(run.begin + oi, base_i, inv_scale, f.scale, false), 0, own_begin});
     // The last cell of a row also holds the samples exactly on the row's last voxel.
-    const int u_end =
-        std::min(firstPixel(run.end, base_i, inv_scale, f.scale, run.end == n_i - 1), width);
+    const int u_end = std::min(
+        {firstPixel(run.end + oi, base_i, inv_scale, f.scale, run.end == n_i - 1), width,
+         own_end});
     for (int u = nextLive(links, u_begin); u < u_end; u = nextLive(links, u + 1)) {
-      const double qi = u * inv_scale + base_i;
+      const double qi = (u * inv_scale + base_i) - oi;
       const int i0 = std::clamp(static_cast<int>(qi), run.begin, run.end - 1);
       const float fi = std::clamp(static_cast<float>(qi - i0), 0.f, 1.f);
       if (sample(u, i0, fi)) links[u] = u + 1;
@@ -257,14 +280,14 @@ template <int K, bool kSpectralT>
 template <int K, bool kSpectralT, bool kPre>
 void compositeBand(const CompositeJob& job, int v0, int v1, std::vector<int>& links) {
   const int width = job.image->width;
-  const int n_k = job.encoding->slices();
+  const int n_k = job.slice_end - job.slice_begin;
   const int lines = v1 - v0;
   links.resize(static_cast<std::size_t>(lines) * (width + 1));
   for (int l = 0; l < lines; ++l)
     for (int u = 0; u <= width; ++u) links[static_cast<std::size_t>(l) * (width + 1) + u] = u;
   int live_lines = lines;
   for (int step = 0; step < n_k && live_lines > 0; ++step) {
-    const int slice = job.view->increasing ? step : n_k - 1 - step;
+    const int slice = job.view->increasing ? job.slice_begin + step : job.slice_end - 1 - step;
     live_lines = 0;
     for (int l = 0; l < lines; ++l) {
       int* line = links.data() + static_cast<std::size_t>(l) * (width + 1);

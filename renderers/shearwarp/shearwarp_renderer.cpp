@@ -48,7 +48,7 @@ const BackendInfo& ShearWarpRenderer::info() const {
   static const BackendInfo info{
       "shearwarp", "Lacroute & Levoy shear-warp over run-length-encoded classified slices",
       {.perspective = false, .spectral_transmittance = true,
-       .max_channels = shearwarp::kMaxChannels},
+       .max_channels = shearwarp::kMaxChannels, .bricks = true},
       {OptionSpec::integer("supersample", 1, 1, 4,
                            "intermediate pixels per voxel along each slice axis: less blur "
                            "under zoom, for time"),
@@ -60,11 +60,69 @@ const BackendInfo& ShearWarpRenderer::info() const {
   return info;
 }
 
+namespace {
+
+// The grid the view is factorised for: the whole volume's, for a brick.
+const Dims& viewDims(const ClassifiedVolume& cv) { return cv.brick ? cv.brick->whole : cv.dims; }
+
+// A brick's place in the whole grid and its own samples (CompositeJob's fields).
+void placeBrick(const ClassifiedVolume& cv, int axis, shearwarp::CompositeJob& job,
+                int slices) {
+  job.slice_begin = 0, job.slice_end = slices;
+  if (!cv.brick) return;
+  const VolumeBrick& b = *cv.brick;
+  for (int a = 0; a < 3; ++a) {
+    job.origin[a] = b.stored.lo[a];
+    if (b.own.lo[a] > 0) job.lo[a] = b.own.lo[a];
+    if (b.own.hi[a] < b.whole[a]) job.hi[a] = b.own.hi[a];
+  }
+  job.slice_begin = b.own.lo[axis] - b.stored.lo[axis];
+  job.slice_end = b.own.hi[axis] - b.stored.lo[axis];
+}
+
+// The intermediate image as a light-independent image of its size (planar), and back.
+LightIndependentImage planarOf(const shearwarp::IntermediateImage& im) {
+  LightIndependentImage out(im.width, im.height, im.s_channels, im.t_channels);
+  const int planes = im.channels();
+  const std::size_t n = out.pixels();
+  for (int p = 0; p < planes; ++p) {
+    float* plane = out.planeFloat(p).data();
+    for (std::size_t i = 0; i < n; ++i) plane[i] = im.data[i * planes + p];
+  }
+  return out;
+}
+
+}  // namespace
+
+LightIndependentImage ShearWarpRenderer::finishBricks(LightIndependentImage composited,
+                                                      const RenderRequest& req) const {
+  const ClassifiedVolume& cv = req.volume;
+  const BackendOptions options = readBackendOptions(info().options, req.options, info().name,
+                                                    req.options_source);
+  const shearwarp::ShearWarpFactorization view =
+      shearwarp::factorizeView(req.camera, req.width, req.height, viewDims(cv), cv.spacing,
+                               options.integer("supersample"));
+  shearwarp::IntermediateImage intermediate(view.width, view.height, cv.k, cv.t_channels);
+  if (composited.width() != view.width || composited.height() != view.height)
+    throw Error(fmt::format("shearwarp: composited bricks are {}×{}, the view's intermediate "
+                            "image {}×{}",
+                            composited.width(), composited.height(), view.width, view.height));
+  const int planes = intermediate.channels();
+  const std::size_t n = composited.pixels();
+  for (int p = 0; p < planes; ++p) {
+    const float* plane = composited.planeFloat(p).data();
+    for (std::size_t i = 0; i < n; ++i) intermediate.data[i * planes + p] = plane[i];
+  }
+  LightIndependentImage image(req.width, req.height, cv.k, cv.t_channels);
+  shearwarp::warpToFinal(intermediate, view, image);
+  return image;
+}
+
 std::uint64_t ShearWarpRenderer::workingBytes(const RenderRequest& req,
                                               const BackendOptions& options) const {
   const ClassifiedVolume& cv = req.volume;
   const shearwarp::ShearWarpFactorization view = shearwarp::factorizeView(
-      req.camera, req.width, req.height, cv.dims, cv.spacing, options.integer("supersample"));
+      req.camera, req.width, req.height, viewDims(cv), cv.spacing, options.integer("supersample"));
   return std::uint64_t(view.width) * std::uint64_t(view.height) *
          std::uint64_t(cv.k + cv.t_channels) * sizeof(float);
 }
@@ -75,7 +133,7 @@ LightIndependentImage ShearWarpRenderer::renderImpl(const RenderRequest& req,
   const ClassifiedVolume& cv = req.volume;
   const std::shared_ptr<const shearwarp::RleVolume> encoded = shearwarp::RleVolume::of(cv);
   const shearwarp::ShearWarpFactorization view = shearwarp::factorizeView(
-      req.camera, req.width, req.height, cv.dims, cv.spacing, options.integer("supersample"));
+      req.camera, req.width, req.height, viewDims(cv), cv.spacing, options.integer("supersample"));
   const shearwarp::AxisEncoding& encoding = encoded->encoding(view.axis);
 
   // Opacity and transmission for the slice spacing instead of the classification step: of the
@@ -118,6 +176,7 @@ LightIndependentImage ShearWarpRenderer::renderImpl(const RenderRequest& req,
                               static_cast<float>(req.termination),
                               PhongSetup(req.shading, light, half),
                               &intermediate};
+  placeBrick(cv, view.axis, job, encoding.slices());
   std::shared_ptr<const shearwarp::PreclassifiedAxis> preclassified;
   std::optional<shearwarp::ShadingTable> shading;
   std::optional<shearwarp::PowerTable> opacity_power, transmission_power;
@@ -148,8 +207,13 @@ LightIndependentImage ShearWarpRenderer::renderImpl(const RenderRequest& req,
     }
   }
 
-  LightIndependentImage image(req.width, req.height, cv.k, cv.t_channels);
-  shearwarp::warpToFinal(intermediate, view, image);
+  LightIndependentImage image;
+  if (cv.brick) {
+    image = planarOf(intermediate);  // composited with the other bricks, then finishBricks
+  } else {
+    image = LightIndependentImage(req.width, req.height, cv.k, cv.t_channels);
+    shearwarp::warpToFinal(intermediate, view, image);
+  }
   const std::lock_guard lock(pool_mutex_);
   pool_.push_back(std::move(pooled));
   return image;

@@ -30,6 +30,10 @@ struct IntermediateImage;
 class ShearWarpRenderer final : public Renderer {
  public:
   const BackendInfo& info() const override;
+  // Bricks come back as intermediate images (volume resolution × supersample along the slice
+  // axes); the composited one is warped here.
+  LightIndependentImage finishBricks(LightIndependentImage composited,
+                                     const RenderRequest& request) const override;
 
  protected:
   // The intermediate image, at volume resolution × supersample along the slice axes.

@@ -150,6 +150,9 @@ BrickedRender renderBothWays(const Scene& scene, const ColourModel& model,
   out.bricked = images[order.back()];
   for (int i = static_cast<int>(order.size()) - 2; i >= 0; --i)
     compositeOver(images[order[i]], out.bricked);
+  RenderRequest req = sceneRequest(parts[0], classified[0]);
+  req.termination = termination;
+  out.bricked = renderer->finishBricks(std::move(out.bricked), req);
   return out;
 }
 
@@ -194,7 +197,10 @@ INSTANTIATE_TEST_SUITE_P(
     Scenes, BrickedEqualsWhole,
     ::testing::Values(std::make_tuple("engine", "raycast", "rgb"),
                       std::make_tuple("engine", "raycast", "factor:6"),
-                      std::make_tuple("phantom", "raycast", "factor:6")),  // spectral T
+                      std::make_tuple("phantom", "raycast", "factor:6"),  // spectral T
+                      std::make_tuple("engine", "shearwarp", "rgb"),
+                      std::make_tuple("engine", "shearwarp", "factor:6"),
+                      std::make_tuple("phantom", "shearwarp", "factor:6")),
     [](const auto& info) {
       std::string name = std::get<0>(info.param) + "_" + std::get<1>(info.param) + "_" +
                          std::get<2>(info.param);
