@@ -158,9 +158,14 @@ ClassifiedVolume classify(const Volume& volume, const TransferFunction& tf,
                               "in {}..{}", volume.source(), toString(volume.type()), lo, hi));
     if (!isIntegerType(volume.type()))  // float label maps are fine while every label is whole
       for (std::size_t i = 0; i < cv.values.size(); ++i)
-        if (cv.values[i] != std::floor(cv.values[i]))
-          throw Error(fmt::format("{}: voxel {} holds {}, not a whole label", volume.source(), i,
-                                  cv.values[i]));
+        if (cv.values[i] != std::floor(cv.values[i])) {
+          // Named in the whole grid's coordinates, also from a brick.
+          const Dims& d = volume.dims();
+          const Dims o = volume.brick() ? volume.brick()->stored.lo : Dims{0, 0, 0};
+          const std::size_t x = i % d[0], y = i / d[0] % d[1], z = i / d[0] / d[1];
+          throw Error(fmt::format("{}: voxel ({}, {}, {}) holds {}, not a whole label",
+                                  volume.source(), x + o[0], y + o[1], z + o[2], cv.values[i]));
+        }
     cv.entries = std::max(static_cast<int>(hi) + 1, static_cast<int>(tf.labels.size()));
     for (int label = 0; label < cv.entries; ++label) {
       const int mat = label < static_cast<int>(tf.labels.size()) ? tf.labels[label] : -1;
