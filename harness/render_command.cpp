@@ -228,9 +228,11 @@ int runRender(const RenderOptions& o) {
   request.note = [&](const std::string& note) { notes.push_back(note); };
   double brick_render_ms = 0, composite_ms = 0;
   const auto renderFrame = [&](const ProgressFn& progress) {
-    const auto t0 = clock::now();
-    phase(dist, [&] { image = renderer->render(request, progress); });
-    brick_render_ms = msSince(t0);
+    phase(dist, [&] {
+      const auto t0 = clock::now();
+      image = renderer->render(request, progress);
+      brick_render_ms = msSince(t0);  // this process's own work, before waiting for the others
+    });
     if (dist) {
       const auto t1 = clock::now();
       image = dist->composite(image, request.camera, scene.volume.spacing());
