@@ -204,7 +204,9 @@ INSTANTIATE_TEST_SUITE_P(
     [](const auto& info) {
       std::string name = std::get<0>(info.param) + "_" + std::get<1>(info.param) + "_" +
                          std::get<2>(info.param);
-      std::replace(name.begin(), name.end(), ':', '_');
+      // "Factor6": the sanitize preset leaves out tests that train factor models by that name.
+      const auto at = name.find("factor:");
+      if (at != std::string::npos) name.replace(at, 7, "Factor");
       return name;
     });
 
