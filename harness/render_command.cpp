@@ -132,6 +132,47 @@ void phase(RenderDistribution* distribution, Body&& body) {
   distribution->agree(failure);
 }
 
+// What the render command loads before any work: the spectra, the backend (unknown names and
+// backends that cannot take a brick fail first), the scene with the command line's overrides.
+struct Loaded {
+  SpectrumLibrary library;
+  Observer observer;
+  Scene scene;
+  std::unique_ptr<Renderer> renderer;
+};
+
+Loaded loadForRender(const RenderOptions& o, const WavelengthGrid& grid,
+                     const VolumeLoadOptions& volume_options) {
+  SpectrumLibrary library = SpectrumLibrary::load(o.data_dir, grid);
+  Observer observer = Observer::cie1931(o.data_dir, grid);
+  std::unique_ptr<Renderer> renderer = makeRenderer(o.renderer);
+  if (o.distribution && !renderer->info().supports.bricks) {
+    std::vector<std::string> able;
+    for (const std::string& name : rendererNames())
+      if (makeRenderer(name)->info().supports.bricks) able.push_back(name);
+    throw Error(fmt::format("--renderer {}: this backend cannot render one brick of a "
+                            "distributed render; use {}",
+                            o.renderer, fmt::join(able, " or ")));
+  }
+  Scene scene = loadScene(o.scene, library, volume_options);
+  if (o.width) scene.width = *o.width;
+  if (o.height) scene.height = *o.height;
+  checkRendererOptions(scene.renderer_options, o.scene + ": render.options");
+  for (const auto& option : o.options)
+    applyOptionAssignment(scene.renderer_options, option, "--option");
+  if (!o.model.empty() && o.model != "auto") {  // a bad --model names the flag, not the scene
+    try {
+      const ModelName name = parseModelName(o.model);
+      if (name.kind == ModelKind::kSpectral && name.k > grid.count)
+        throw Error(fmt::format("spectral:{} asks for more bands than the {} samples of the grid",
+                                name.k, grid.count));
+    } catch (const Error& e) {
+      throw Error(fmt::format("--model '{}': {}", o.model, e.what()));
+    }
+  }
+  return {std::move(library), std::move(observer), std::move(scene), std::move(renderer)};
+}
+
 // Peak resident memory of this process so far.
 std::uint64_t peakResidentBytes() {
   rusage usage{};
@@ -145,6 +186,61 @@ nlohmann::json boxJson(const VoxelBox& box) {
 
 }  // namespace
 
+// Relights the image under every scene light and mix and writes what svr render writes: the
+// EXR and its model, the PNGs, view.html when asked, render.json (with `distributed` when the
+// render was: one entry per process).
+void writeRenderOutputs(const RenderOptions& o, const Scene& scene, const Renderer& renderer,
+                        const SceneModel& chosen, const Observer& observer,
+                        const LightIndependentImage& image, Timings t,
+                        const std::vector<std::string>& notes,
+                        const nlohmann::json& distributed) {
+  using clock = std::chrono::steady_clock;
+  const ColourModel& model = *chosen.model;
+  const bool quiet = o.quiet;
+  // From here on files are written: Ctrl-C waits for them to be complete (issue 9).
+  const WritingOutputs writing;
+  std::error_code mkdir_error;
+  fs::create_directories(o.out_dir, mkdir_error);
+  if (mkdir_error)
+    throw Error(fmt::format("--out {}: cannot create the folder: {}", o.out_dir,
+                            mkdir_error.message()));
+  const auto t_relight = clock::now();
+  PostIlluminator post(model);
+  if (scene.background) post.setBackground(model.project(*scene.background));
+  std::vector<RelitOutput> outputs = sceneOutputs(scene, model, observer);
+  for (auto& out : outputs) {
+    out.rgb.resize(3 * image.pixels());
+    post.setLight(out.light);
+    post.relightSrgb8(image, out.rgb);
+  }
+  t.relight = msSince(t_relight) / std::max<size_t>(outputs.size(), 1);
+
+  const LightIndependentImage stored = o.half ? image.withStorage(SampleStorage::kHalf) : image;
+  saveModel(model, (fs::path(o.out_dir) / "light_independent.model.json").string());
+  writeLightIndependentExr(stored, (fs::path(o.out_dir) / "light_independent.exr").string(),
+                           {{"model", model.name()}, {"model_file", "light_independent.model.json"},
+                            {"scene", o.scene}, {"renderer", renderer.name()}});
+  for (const auto& out : outputs)
+    writeSrgbPng(out.rgb, image.width(), image.height(), (fs::path(o.out_dir) / out.file).string());
+  if (o.html) {
+    const PageLightContext context{model, observer, scene.background, image.transmittanceChannels()};
+    const SampleChoice samples = chooseSamples(context, scene, image);
+    const nlohmann::json info = pageSceneInfo(context, scene, chosen, renderer.name(),
+                                              orbitViewOf(scene.camera), samples);
+    writeTextAtomically((fs::path(o.out_dir) / "view.html").string(),
+                        standalonePage(info, image.withStorage(samples.storage)));
+  }
+  nlohmann::json report = renderReport(o, scene, renderer, chosen, image, outputs, t, notes);
+  if (!distributed.is_null()) report["distributed"] = {{"processes", distributed.size()}, {"per_process", distributed}};
+  writeTextAtomically((fs::path(o.out_dir) / "render.json").string(), report.dump(1) + "\n");
+  if (!quiet)
+    fmt::print("{}: {} with {} ({}), {}×{}: load {:.0f} ms, classify {:.0f} ms, render {:.0f} ms{}, "
+               "relight {:.2f} ms/light → {}\n",
+               o.scene, renderer.name(), model.name(), chosen.description, image.width(),
+               image.height(), t.load, t.classify, t.render,
+               t.steady ? fmt::format(" (steady {:.0f} ms)", *t.steady) : "", t.relight, o.out_dir);
+}
+
 int runRender(const RenderOptions& o) {
   using clock = std::chrono::steady_clock;
   RenderDistribution* const dist = o.distribution;
@@ -153,43 +249,14 @@ int runRender(const RenderOptions& o) {
   Timings t;
   const auto t_load = clock::now();
   const WavelengthGrid grid = WavelengthGrid::standard();
-  std::optional<SpectrumLibrary> library;
-  std::optional<Observer> observer;
-  Scene scene;
-  std::unique_ptr<Renderer> renderer;
   VolumeLoadOptions volume_options;
   if (o.memory_budget) volume_options.memory_budget = *o.memory_budget;
   if (dist) volume_options.brick = [dist](const Dims& whole) { return dist->brick(whole); };
-  phase(dist, [&] {
-    library = SpectrumLibrary::load(o.data_dir, grid);
-    observer = Observer::cie1931(o.data_dir, grid);
-    renderer = makeRenderer(o.renderer);  // unknown names fail before any work
-    if (dist && !renderer->info().supports.bricks) {
-      std::vector<std::string> able;
-      for (const std::string& name : rendererNames())
-        if (makeRenderer(name)->info().supports.bricks) able.push_back(name);
-      throw Error(fmt::format("--renderer {}: this backend cannot render one brick of a "
-                              "distributed render; use {}",
-                              o.renderer, fmt::join(able, " or ")));
-    }
-    scene = loadScene(o.scene, *library, volume_options);
-    if (o.width) scene.width = *o.width;
-    if (o.height) scene.height = *o.height;
-    checkRendererOptions(scene.renderer_options, o.scene + ": render.options");
-    for (const auto& option : o.options)
-      applyOptionAssignment(scene.renderer_options, option, "--option");
-    if (!o.model.empty() && o.model != "auto") {  // a bad --model names the flag, not the scene
-      try {
-        const ModelName name = parseModelName(o.model);
-        if (name.kind == ModelKind::kSpectral && name.k > grid.count)
-          throw Error(fmt::format("spectral:{} asks for more bands than the {} samples of the "
-                                  "grid",
-                                  name.k, grid.count));
-      } catch (const Error& e) {
-        throw Error(fmt::format("--model '{}': {}", o.model, e.what()));
-      }
-    }
-  });
+  std::optional<Loaded> loaded;
+  phase(dist, [&] { loaded.emplace(loadForRender(o, grid, volume_options)); });
+  Scene& scene = loaded->scene;
+  const Observer& observer = loaded->observer;
+  const Renderer* const renderer = loaded->renderer.get();
   if (dist) {  // the classification's bins span the whole volume's values, on every brick
     VolumeBrick brick = *scene.volume.brick();
     brick.whole_range = dist->wholeRange(scene.volume.localRange());
@@ -201,7 +268,7 @@ int runRender(const RenderOptions& o) {
   std::optional<SceneModel> chosen_model;
   ClassifiedVolume classified;
   phase(dist, [&] {
-    chosen_model = makeSceneModel(o.model.empty() ? scene.model : o.model, scene, *observer);
+    chosen_model = makeSceneModel(o.model.empty() ? scene.model : o.model, scene, observer);
     classified = classifyScene(scene, *chosen_model->model);
     // The light-independent image and every relit image, before any of them is allocated.
     const std::uint64_t relit_count = scene.lights.size() + scene.mixes.size();
@@ -217,7 +284,6 @@ int runRender(const RenderOptions& o) {
     classified.brick->whole_field =
         dist->wholeField(fieldRangeOver(classified, ownInStored(*classified.brick)));
   const SceneModel& chosen = *chosen_model;
-  const ColourModel& model = *chosen.model;
   t.classify = msSince(t_classify);
 
   const auto t_render = clock::now();
@@ -267,48 +333,7 @@ int runRender(const RenderOptions& o) {
   if (!writer) return 0;
   if (!quiet)
     for (const auto& note : notes) fmt::print(stderr, "svr: note: {}\n", note);
-  // From here on files are written: Ctrl-C waits for them to be complete (issue 9).
-  const WritingOutputs writing;
-  std::error_code mkdir_error;
-  fs::create_directories(o.out_dir, mkdir_error);
-  if (mkdir_error)
-    throw Error(fmt::format("--out {}: cannot create the folder: {}", o.out_dir,
-                            mkdir_error.message()));
-  const auto t_relight = clock::now();
-  PostIlluminator post(model);
-  if (scene.background) post.setBackground(model.project(*scene.background));
-  std::vector<RelitOutput> outputs = sceneOutputs(scene, model, *observer);
-  for (auto& out : outputs) {
-    out.rgb.resize(3 * image.pixels());
-    post.setLight(out.light);
-    post.relightSrgb8(image, out.rgb);
-  }
-  t.relight = msSince(t_relight) / std::max<size_t>(outputs.size(), 1);
-
-  const LightIndependentImage stored = o.half ? image.withStorage(SampleStorage::kHalf) : image;
-  saveModel(model, (fs::path(o.out_dir) / "light_independent.model.json").string());
-  writeLightIndependentExr(stored, (fs::path(o.out_dir) / "light_independent.exr").string(),
-                           {{"model", model.name()}, {"model_file", "light_independent.model.json"},
-                            {"scene", o.scene}, {"renderer", renderer->name()}});
-  for (const auto& out : outputs)
-    writeSrgbPng(out.rgb, image.width(), image.height(), (fs::path(o.out_dir) / out.file).string());
-  if (o.html) {
-    const PageLightContext context{model, *observer, scene.background, image.transmittanceChannels()};
-    const SampleChoice samples = chooseSamples(context, scene, image);
-    const nlohmann::json info = pageSceneInfo(context, scene, chosen, renderer->name(),
-                                              orbitViewOf(scene.camera), samples);
-    writeTextAtomically((fs::path(o.out_dir) / "view.html").string(),
-                        standalonePage(info, image.withStorage(samples.storage)));
-  }
-  nlohmann::json report = renderReport(o, scene, *renderer, chosen, image, outputs, t, notes);
-  if (dist) report["distributed"] = {{"processes", distributed.size()}, {"per_process", distributed}};
-  writeTextAtomically((fs::path(o.out_dir) / "render.json").string(), report.dump(1) + "\n");
-  if (!quiet)
-    fmt::print("{}: {} with {} ({}), {}×{}: load {:.0f} ms, classify {:.0f} ms, render {:.0f} ms{}, "
-               "relight {:.2f} ms/light → {}\n",
-               o.scene, renderer->name(), model.name(), chosen.description, image.width(),
-               image.height(), t.load, t.classify, t.render,
-               t.steady ? fmt::format(" (steady {:.0f} ms)", *t.steady) : "", t.relight, o.out_dir);
+  writeRenderOutputs(o, scene, *renderer, chosen, observer, image, t, notes, distributed);
   return 0;
 }
 

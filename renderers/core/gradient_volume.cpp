@@ -1,6 +1,7 @@
 #include "renderers/core/gradient_volume.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 
 #include <fmt/format.h>
@@ -39,15 +40,19 @@ inline std::int16_t quantise(float v) {
   return static_cast<std::int16_t>(std::clamp(v + (v >= 0.f ? 0.5f : -0.5f), -32767.f, 32767.f));
 }
 
+// 1 / (2 · spacing) per axis: central differences in world units.
+std::array<float, 3> halfInverseSpacing(const ClassifiedVolume& cv) {
+  return {static_cast<float>(0.5 / cv.spacing.x), static_cast<float>(0.5 / cv.spacing.y),
+          static_cast<float>(0.5 / cv.spacing.z)};
+}
+
 }  // namespace
 
 FieldRange fieldRangeOver(const ClassifiedVolume& cv, const VoxelBox& box) {
   const Dims& d = cv.dims;
   const float* f = cv.shadingField().data();
   const std::size_t row_voxels = d[0];
-  const float half_inv[3] = {static_cast<float>(0.5 / cv.spacing.x),
-                             static_cast<float>(0.5 / cv.spacing.y),
-                             static_cast<float>(0.5 / cv.spacing.z)};
+  const std::array<float, 3> half_inv = halfInverseSpacing(cv);
   const Dims size = box.size();
   const int rows = size[1] * size[2];
   const bool parallel = static_cast<std::int64_t>(rows) * d[0] >= kParallelVoxels;
@@ -58,7 +63,7 @@ FieldRange fieldRangeOver(const ClassifiedVolume& cv, const VoxelBox& box) {
 #pragma omp for schedule(static)
     for (int r = 0; r < rows; ++r) {
       const int y = box.lo[1] + r % size[1], z = box.lo[2] + r / size[1];
-      rowGradients(f, d, y, z, half_inv, g.data(), g.data() + row_voxels,
+      rowGradients(f, d, y, z, half_inv.data(), g.data(), g.data() + row_voxels,
                    g.data() + 2 * row_voxels);
       const float* field = f + row_voxels * (static_cast<std::size_t>(z) * d[1] + y);
       for (int x = box.lo[0]; x < box.hi[0]; ++x) {
@@ -75,9 +80,7 @@ GradientVolume buildGradientVolume(const ClassifiedVolume& cv) {
   const Dims& d = cv.dims;
   const float* f = cv.shadingField().data();
   const std::size_t row_voxels = d[0];
-  const float half_inv[3] = {static_cast<float>(0.5 / cv.spacing.x),
-                             static_cast<float>(0.5 / cv.spacing.y),
-                             static_cast<float>(0.5 / cv.spacing.z)};
+  const std::array<float, 3> half_inv = halfInverseSpacing(cv);
   const int rows = d[1] * d[2];
   GradientVolume out;
   out.dims = d;
@@ -105,7 +108,7 @@ GradientVolume buildGradientVolume(const ClassifiedVolume& cv) {
       float* gx = g.data();
       float* gy = gx + row_voxels;
       float* gz = gy + row_voxels;
-      rowGradients(f, d, r % d[1], r / d[1], half_inv, gx, gy, gz);
+      rowGradients(f, d, r % d[1], r / d[1], half_inv.data(), gx, gy, gz);
       std::int16_t* o = out.q.get() + 4 * row_voxels * r;
       const float* field = f + row_voxels * r;
       for (std::size_t x = 0; x < row_voxels; ++x) {
