@@ -292,12 +292,25 @@ int runRender(const RenderOptions& o) {
   RenderRequest request = sceneRequest(scene, classified);
   request.memory_budget = volume_options.memory_budget;
   request.note = [&](const std::string& note) { notes.push_back(note); };
-  double brick_render_ms = 0, composite_ms = 0;
+  double brick_render_ms = 0, composite_ms = 0, front_wait_ms = 0;
   const auto renderFrame = [&](const ProgressFn& progress) {
     phase(dist, [&] {
+      // Bricks behind others stop their rays where the whole render does.
+      std::unique_ptr<FrontTransmittance> front;
+      if (dist && renderer->info().supports.front_transmittance)
+        front = dist->frontTransmittance(request.camera, request.width, request.height,
+                                         classified.t_channels, scene.volume.spacing());
+      request.front = front.get();
       const auto t0 = clock::now();
-      image = renderer->render(request, progress);
+      try {
+        image = renderer->render(request, progress);
+      } catch (...) {
+        if (front) front->abandon();  // the bricks behind are not left waiting on this one
+        throw;
+      }
       brick_render_ms = msSince(t0);  // this process's own work, before waiting for the others
+      front_wait_ms = front ? front->waitedMs() : 0.0;
+      request.front = nullptr;
     });
     if (dist) {
       const auto t1 = clock::now();
@@ -328,6 +341,7 @@ int runRender(const RenderOptions& o) {
                                 {"volume_bytes", scene.volume.bytes()},
                                 {"render_ms", brick_render_ms},
                                 {"composite_ms", composite_ms},
+                                {"front_wait_ms", front_wait_ms},
                                 {"peak_resident_bytes", peakResidentBytes()}});
   }
   if (!writer) return 0;

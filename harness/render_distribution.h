@@ -6,11 +6,13 @@
 // writes — is the same code either way.
 
 #include <exception>
+#include <memory>
 #include <nlohmann/json.hpp>
 #include <utility>
 
 #include "renderers/core/brick_box.h"
 #include "renderers/core/camera.h"
+#include "renderers/core/front_transmittance.h"
 #include "spectral/light_independent_image.h"
 
 namespace svr {
@@ -24,6 +26,12 @@ class RenderDistribution {
   // Collectives: every process's range of its own voxels → the whole volume's.
   virtual std::pair<double, double> wholeRange(std::pair<double, double> local) = 0;
   virtual FieldRange wholeField(const FieldRange& local) = 0;
+  // For one frame of a backend that takes it (BackendCapabilities::front_transmittance): the
+  // transmittance of the bricks in front of this process's, block by block; null when nothing
+  // can lie in front (one process). Collective.
+  virtual std::unique_ptr<FrontTransmittance> frontTransmittance(const Camera& camera, int width,
+                                                                 int height, int t_channels,
+                                                                 const glm::dvec3& spacing) = 0;
   // The bricks' images composited front to back for the camera: the whole image on the writer,
   // an empty image elsewhere. `spacing` places the kd planes in world space.
   virtual LightIndependentImage composite(const LightIndependentImage& local,

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <string>
 
+#include "harness/mpi/mpi_front_transmittance.h"
 #include "renderers/core/image_compositing.h"
 
 namespace svr {
@@ -166,6 +167,14 @@ std::vector<float> MpiDistribution::reduceInDepthOrder(MPI_Comm depth, std::vect
   }
   if (rank_ != 0) result.clear();
   return result;
+}
+
+std::unique_ptr<FrontTransmittance> MpiDistribution::frontTransmittance(
+    const Camera& camera, int width, int height, int t_channels, const glm::dvec3& spacing) {
+  if (size_ == 1) return nullptr;
+  return std::make_unique<MpiFrontTransmittance>(
+      comm_, bricks_, visibilityOrder(bricks_, camera, whole_, spacing), whole_, spacing, camera,
+      width, height, t_channels);
 }
 
 LightIndependentImage MpiDistribution::composite(const LightIndependentImage& local,

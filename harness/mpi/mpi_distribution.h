@@ -29,6 +29,9 @@ class MpiDistribution final : public RenderDistribution {
   VolumeBrick brick(const Dims& whole) override;
   std::pair<double, double> wholeRange(std::pair<double, double> local) override;
   FieldRange wholeField(const FieldRange& local) override;
+  std::unique_ptr<FrontTransmittance> frontTransmittance(const Camera& camera, int width,
+                                                         int height, int t_channels,
+                                                         const glm::dvec3& spacing) override;
   LightIndependentImage composite(const LightIndependentImage& local, const Camera& camera,
                                   const glm::dvec3& spacing) override;
   nlohmann::json gather(const nlohmann::json& local) override;

@@ -22,6 +22,8 @@ struct BackendCapabilities {
   // Renders one brick of a distributed render (ClassifiedVolume::brick): samples the whole
   // grid's lattice and takes only the brick's own samples.
   bool bricks = false;
+  // Takes RenderRequest::front: stops a brick's rays where the whole render stops them.
+  bool front_transmittance = false;
 };
 
 struct BackendInfo {

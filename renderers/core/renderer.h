@@ -26,6 +26,8 @@
 
 namespace svr {
 
+class FrontTransmittance;
+
 struct RenderRequest {
   const ClassifiedVolume& volume;
   Camera camera;
@@ -45,6 +47,9 @@ struct RenderRequest {
   // Told what a user should know about how the frame was made (a slower fallback taken because
   // something did not fit); empty: not told.
   std::function<void(const std::string&)> note;
+  // A brick of a distributed render: the transmittance of the bricks in front, block by block,
+  // for backends that support it (BackendCapabilities::front_transmittance); null: none.
+  FrontTransmittance* front = nullptr;
 };
 
 class Renderer {

@@ -19,6 +19,7 @@
 
 #include "renderers/core/classification.h"
 #include "renderers/core/classified_sample.h"
+#include "renderers/core/front_transmittance.h"
 #include "renderers/core/gradient_volume.h"
 #include "renderers/core/occupancy_pyramid.h"
 #include "renderers/core/renderer.h"
@@ -335,13 +336,28 @@ SVR_RAYCAST_TARGET void traceTile(const TileJob& job) {
       float S[kCap], T[kSpectralT ? kCap : 1];
       for (int c = 0; c < k; ++c) S[c] = 0.f;
       for (int c = 0; c < kt; ++c) T[c] = 1.f;
+      // The transmittance in front of a brick: its rays stop where the whole render's do.
+      float front[kSpectralT ? kCap : 1];
+      float front_max = 1.f;
+      if (job.front) {
+        constexpr int n = FrontTransmittance::kBlock;
+        const std::size_t at = static_cast<std::size_t>(y - job.front_y0) * n + (x - job.front_x0);
+        front_max = 0.f;
+        for (int c = 0; c < kt; ++c) {
+          front[c] = job.front[c * n * n + at];
+          front_max = std::max(front_max, front[c]);
+        }
+      } else {
+        for (int c = 0; c < kt; ++c) front[c] = 1.f;
+      }
 
       const Ray ray = job.rays->ray(x + 0.5, y + 0.5);
       const glm::dvec3 o = ray.origin * inv_spacing + centre;
       const glm::dvec3 d = ray.direction * inv_spacing;  // voxels per world unit
       double t0, t1;
       long i_begin = 0, i_end = 0;
-      if (clipToGrid(whole, o, d, t0, t1) && brick.range(o, d, t0, t1, step, i_begin, i_end)) {
+      if (!(front_max < threshold) && clipToGrid(whole, o, d, t0, t1) &&
+          brick.range(o, d, t0, t1, step, i_begin, i_end)) {
         const glm::dvec3 view = -ray.direction;
         const glm::dvec3 light = req.light_direction ? *req.light_direction : view;
         phong_setup.setDirections(light, glm::normalize(light + view));
@@ -403,7 +419,7 @@ SVR_RAYCAST_TARGET void traceTile(const TileJob& job) {
           float tmax = 0.f;
           for (int c = 0; c < kt; ++c) {
             T[c] *= acc[2 + k + c];
-            tmax = std::max(tmax, T[c]);
+            tmax = std::max(tmax, front[c] * T[c]);
           }
           if (tmax < threshold) break;
           ++i;

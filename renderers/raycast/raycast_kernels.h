@@ -22,6 +22,10 @@ struct TileJob {
   const RenderRequest* request;
   LightIndependentImage* image;
   int x0, y0, x1, y1;
+  // A brick's front transmittance over the block holding this tile (FrontTransmittance's
+  // layout: planes of kBlock², pitch kBlock, from pixel front_x0, front_y0); null: none.
+  const float* front = nullptr;
+  int front_x0 = 0, front_y0 = 0;
 };
 
 using TileFn = void (*)(const TileJob&);

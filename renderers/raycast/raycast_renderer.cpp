@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include "renderers/core/front_transmittance.h"
 #include "renderers/raycast/raycast_kernels.h"
 #include "renderers/registry.h"
 #include "spectral/error.h"
@@ -55,7 +56,8 @@ const BackendInfo& RaycastRenderer::info() const {
       "raycast",
       "a ray per pixel, trilinear samples, Phong; the reference backend",
       {.perspective = true, .spectral_transmittance = true, .max_channels = raycast::kMaxChannels,
-       .bricks = true},
+       .bricks = true,
+       .front_transmittance = true},
       {OptionSpec::choice("gradients", {"auto", "precomputed", "on-the-fly"},
                           "normals from gradients precomputed at the voxels (8 bytes a voxel, "
                           "kept with the classification) or central differences per sample; "
@@ -64,6 +66,56 @@ const BackendInfo& RaycastRenderer::info() const {
                           "precomputed when rendering many frames")}};
   return info;
 }
+
+namespace {
+constexpr int kTile = 16;
+
+// The tiles of job's rectangle, in parallel.
+void traceTilesOf(const raycast::TileJob& job, raycast::TileFn fn, ProgressCounter& progress) {
+  const int tiles_x = (job.x1 - job.x0 + kTile - 1) / kTile;
+  const int tiles = tiles_x * ((job.y1 - job.y0 + kTile - 1) / kTile);
+#pragma omp parallel for schedule(dynamic)
+  for (int t = 0; t < tiles; ++t) {
+    raycast::TileJob tile = job;
+    tile.x0 = job.x0 + t % tiles_x * kTile, tile.y0 = job.y0 + t / tiles_x * kTile;
+    tile.x1 = std::min(tile.x0 + kTile, job.x1), tile.y1 = std::min(tile.y0 + kTile, job.y1);
+    fn(tile);
+    progress.advance();
+  }
+}
+
+void traceTiles(const raycast::TileJob& job, raycast::TileFn fn, ProgressCounter& progress) {
+  progress.stage(((job.x1 + kTile - 1) / kTile) * ((job.y1 + kTile - 1) / kTile));
+  traceTilesOf(job, fn, progress);
+}
+
+// A brick with bricks in front: the blocks in the exchange's order, each with the transmittance
+// in front of it, passed on once done. The threads share a block at a time, so the calls into
+// the exchange (MPI in svr-mpi) stay on this thread.
+void traceBlocks(const raycast::TileJob& job, raycast::TileFn fn, FrontTransmittance& exchange,
+                 ProgressCounter& progress) {
+  constexpr int n = FrontTransmittance::kBlock;
+  const int blocks_x = FrontTransmittance::blocksAcross(job.x1);
+  progress.stage(static_cast<long>(exchange.order().size()) * (n / kTile) * (n / kTile));
+  // Blocks out of the order hold none of the brick's samples: S = 0, T = 1 there.
+  LightIndependentImage& image = *job.image;
+  for (int c = 0; c < image.transmittanceChannels(); ++c) {
+    const auto plane = image.planeFloat(image.channels() + c);
+    std::fill(plane.begin(), plane.end(), 1.f);
+  }
+  for (const int b : exchange.order()) {
+    raycast::TileJob block = job;
+    block.x0 = b % blocks_x * n, block.y0 = b / blocks_x * n;
+    block.x1 = std::min(block.x0 + n, job.x1), block.y1 = std::min(block.y0 + n, job.y1);
+    block.front = exchange.front(b);
+    block.front_x0 = block.x0, block.front_y0 = block.y0;
+    traceTilesOf(block, fn, progress);
+    exchange.finished(b, *job.image);
+  }
+  exchange.done();
+}
+
+}  // namespace
 
 LightIndependentImage RaycastRenderer::renderImpl(const RenderRequest& req,
                                                   const BackendOptions& options,
@@ -79,19 +131,12 @@ LightIndependentImage RaycastRenderer::renderImpl(const RenderRequest& req,
       {.k = cv.k, .t_channels = cv.t_channels, .precomputed_gradients = gradients != nullptr,
        .dynamic_width = force_.dynamic_width},
       force_);
-  constexpr int kTile = 16;
-  const int tiles_x = (req.width + kTile - 1) / kTile, tiles_y = (req.height + kTile - 1) / kTile;
-  const int tiles = tiles_x * tiles_y;
-  progress.stage(tiles);
-#pragma omp parallel for schedule(dynamic)
-  for (int t = 0; t < tiles; ++t) {
-    const int tx = t % tiles_x, ty = t / tiles_x;
-    raycast::TileJob job{&cv, gradients.get(), table.get(), occupancy.get(), &rays, &req,
-                         &image, tx * kTile, ty * kTile, std::min((tx + 1) * kTile, req.width),
-                         std::min((ty + 1) * kTile, req.height)};
-    fn(job);
-    progress.advance();
-  }
+  const raycast::TileJob job{&cv, gradients.get(), table.get(), occupancy.get(), &rays, &req,
+                             &image, 0, 0, req.width, req.height};
+  if (req.front)
+    traceBlocks(job, fn, *req.front, progress);
+  else
+    traceTiles(job, fn, progress);
   return image;
 }
 

@@ -1,0 +1,151 @@
+#include "harness/mpi/mpi_front_transmittance.h"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <tuple>
+
+#include "spectral/error.h"
+
+namespace svr {
+namespace {
+
+void check(int code, const char* what) {
+  if (code != MPI_SUCCESS) throw Error(fmt::format("MPI: {} failed (code {})", what, code));
+}
+
+double msSince(std::chrono::steady_clock::time_point t0) {
+  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+}
+
+}  // namespace
+
+MpiFrontTransmittance::MpiFrontTransmittance(MPI_Comm comm, const std::vector<KdBrick>& bricks,
+                                             const std::vector<int>& depth_order,
+                                             const Dims& whole, const glm::dvec3& spacing,
+                                             const Camera& camera, int width, int height,
+                                             int t_channels) {
+  // Its own communicator: block numbers are the tags, apart from every other message.
+  check(MPI_Comm_dup(comm, &comm_), "MPI_Comm_dup");
+  int rank = 0;
+  MPI_Comm_rank(comm_, &rank);
+  const int ranks = static_cast<int>(bricks.size());
+  const int blocks = blocksAcross(width) * blocksAcross(height);
+  planes_size_ = t_channels * kBlock * kBlock;
+
+  // Every rank's footprint, the same on every rank.
+  std::vector<std::vector<char>> covers(ranks, std::vector<char>(blocks, 0));
+  for (int r = 0; r < ranks; ++r)
+    for (int b : footprintBlocks(bricks[r].own, whole, spacing, camera, width, height))
+      covers[r][b] = 1;
+  const auto me = std::find(depth_order.begin(), depth_order.end(), rank) - depth_order.begin();
+  std::vector<std::vector<int>> in_front(blocks);
+  behind_.assign(blocks, {});
+  for (std::ptrdiff_t p = 0; p < ranks; ++p) {
+    const int r = depth_order[p];
+    if (r == rank) continue;
+    for (int b = 0; b < blocks; ++b)
+      if (covers[rank][b] && covers[r][b]) (p < me ? in_front[b] : behind_[b]).push_back(r);
+  }
+
+  std::vector<std::tuple<bool, bool, int>> keyed;  // (waits, nobody waits for it, block)
+  for (int b = 0; b < blocks; ++b)
+    if (covers[rank][b]) keyed.emplace_back(!in_front[b].empty(), behind_[b].empty(), b);
+  std::sort(keyed.begin(), keyed.end());
+  for (const auto& key : keyed) order_.push_back(std::get<2>(key));
+
+  incoming_of_block_.assign(blocks, -1);
+  sent_.assign(blocks, false);
+  for (const int b : order_) {
+    if (in_front[b].empty()) continue;
+    incoming_of_block_[b] = static_cast<int>(incoming_.size());
+    Incoming& in = incoming_.emplace_back();
+    in.block = b;
+    in.requests.resize(in_front[b].size());
+    in.buffers.assign(in_front[b].size(), std::vector<float>(planes_size_));
+    for (std::size_t i = 0; i < in_front[b].size(); ++i)
+      check(MPI_Irecv(in.buffers[i].data(), planes_size_, MPI_FLOAT, in_front[b][i], b, comm_,
+                      &in.requests[i]),
+            "MPI_Irecv");
+  }
+  product_.resize(planes_size_);
+}
+
+MpiFrontTransmittance::~MpiFrontTransmittance() {
+  try {
+    abandon();  // nothing left to do after done(); a render that never ran keeps its promises
+  } catch (...) {
+    MPI_Abort(MPI_COMM_WORLD, 2);  // a rank could be left waiting: stop the job instead
+  }
+  if (comm_ != MPI_COMM_NULL) MPI_Comm_free(&comm_);
+}
+
+const float* MpiFrontTransmittance::front(int block) {
+  const int index = incoming_of_block_[block];
+  if (index < 0) return nullptr;
+  Incoming& in = incoming_[index];
+  const auto t0 = std::chrono::steady_clock::now();
+  check(MPI_Waitall(static_cast<int>(in.requests.size()), in.requests.data(),
+                    MPI_STATUSES_IGNORE),
+        "MPI_Waitall");
+  waited_ms_ += msSince(t0);
+  in.taken = true;
+  // The product in depth order, the same rounding on every run.
+  std::copy(in.buffers[0].begin(), in.buffers[0].end(), product_.begin());
+  for (std::size_t i = 1; i < in.buffers.size(); ++i)
+    for (int j = 0; j < planes_size_; ++j) product_[j] *= in.buffers[i][j];
+  return product_.data();
+}
+
+void MpiFrontTransmittance::send(int block, std::vector<float> transmittance) {
+  sent_[block] = true;
+  if (behind_[block].empty()) return;
+  const std::vector<float>& data = outgoing_.emplace_back(std::move(transmittance));
+  for (const int r : behind_[block]) {
+    MPI_Request request;
+    check(MPI_Isend(data.data(), planes_size_, MPI_FLOAT, r, block, comm_, &request),
+          "MPI_Isend");
+    sends_.push_back(request);
+  }
+  // Lets the transfers move on while this rank renders (MPI progresses inside its calls).
+  int flag = 0;
+  check(MPI_Testall(static_cast<int>(sends_.size()), sends_.data(), &flag, MPI_STATUSES_IGNORE),
+        "MPI_Testall");
+}
+
+void MpiFrontTransmittance::finished(int block, const LightIndependentImage& image) {
+  std::vector<float> transmittance;
+  if (!behind_[block].empty()) {
+    transmittance.resize(planes_size_);
+    copyBlockTransmittance(image, block, transmittance.data());
+  }
+  send(block, std::move(transmittance));
+}
+
+void MpiFrontTransmittance::waitForAll() {
+  for (Incoming& in : incoming_)
+    if (!in.taken) {
+      check(MPI_Waitall(static_cast<int>(in.requests.size()), in.requests.data(),
+                        MPI_STATUSES_IGNORE),
+            "MPI_Waitall");
+      in.taken = true;
+    }
+  check(MPI_Waitall(static_cast<int>(sends_.size()), sends_.data(), MPI_STATUSES_IGNORE),
+        "MPI_Waitall");
+  sends_.clear();
+  outgoing_.clear();
+  closed_ = true;
+}
+
+void MpiFrontTransmittance::done() {
+  if (!closed_) waitForAll();
+}
+
+void MpiFrontTransmittance::abandon() {
+  if (closed_) return;
+  for (const int b : order_)
+    if (!sent_[b]) send(b, std::vector<float>(planes_size_, 1.f));
+  waitForAll();
+}
+
+}  // namespace svr
