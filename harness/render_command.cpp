@@ -20,6 +20,7 @@
 #include "renderers/core/gradient_volume.h"
 #include "renderers/core/memory_budget.h"
 #include "renderers/core/volume_brick.h"
+#include "renderers/core/work_estimate.h"
 #include "renderers/core/scene.h"
 #include "renderers/core/scene_model.h"
 #include "renderers/core/scene_render.h"
@@ -241,6 +242,24 @@ void writeRenderOutputs(const RenderOptions& o, const Scene& scene, const Render
                t.steady ? fmt::format(" (steady {:.0f} ms)", *t.steady) : "", t.relight, o.out_dir);
 }
 
+// The render's work over a coarse lattice of the volume, for backends whose bricks pass the
+// transmittance in front on; the others' bricks each work as if alone, and voxels share that out
+// best (nullopt).
+std::optional<WorkGrid> estimateRenderWork(const RenderOptions& o, const WavelengthGrid& grid,
+                                           const VolumeLoadOptions& volume_options) {
+  if (!makeRenderer(o.renderer)->info().supports.front_transmittance) return std::nullopt;
+  const SpectrumLibrary library = SpectrumLibrary::load(o.data_dir, grid);
+  const Observer observer = Observer::cie1931(o.data_dir, grid);
+  VolumeLoadOptions coarse = volume_options;
+  coarse.brick = nullptr;
+  coarse.lattice = Dims{kWorkLatticeSamples, kWorkLatticeSamples, kWorkLatticeSamples};
+  const Scene scene = loadScene(o.scene, library, coarse);
+  const SceneModel model = makeSceneModel("rgb", scene, observer);
+  return estimateWork(classifyScene(scene, *model.model), scene.camera,
+                      o.width.value_or(scene.width), o.height.value_or(scene.height),
+                      scene.termination);
+}
+
 int runRender(const RenderOptions& o) {
   using clock = std::chrono::steady_clock;
   RenderDistribution* const dist = o.distribution;
@@ -251,7 +270,14 @@ int runRender(const RenderOptions& o) {
   const WavelengthGrid grid = WavelengthGrid::standard();
   VolumeLoadOptions volume_options;
   if (o.memory_budget) volume_options.memory_budget = *o.memory_budget;
-  if (dist) volume_options.brick = [dist](const Dims& whole) { return dist->brick(whole); };
+  if (dist) {  // bricks that take equal time rather than equal voxels, where the backend allows
+    std::optional<WorkGrid> work;
+    phase(dist, [&] {
+      if (writer && o.balance == "work") work = estimateRenderWork(o, grid, volume_options);
+    });
+    dist->balance(work ? &*work : nullptr);
+    volume_options.brick = [dist](const Dims& whole) { return dist->brick(whole); };
+  }
   std::optional<Loaded> loaded;
   phase(dist, [&] { loaded.emplace(loadForRender(o, grid, volume_options)); });
   Scene& scene = loaded->scene;
@@ -383,6 +409,14 @@ CommandEntry render() {
                            "most bytes of voxels and images, e.g. 512M or 2G (default: the "
                            "memory available now)");
             sub.add_flag("-q,--quiet", o->quiet, "no progress bar or summary");
+            if (context.distribution)
+              sub.add_option("--balance", o->balance,
+                             "how the kd-split shares the volume out among the ranks: work "
+                             "(bricks that take equal time, estimated from a 64³ lattice of the "
+                             "volume; raycast, each brick within 1.25× its share of the voxels) "
+                             "or voxels (equal memory)")
+                  ->check(CLI::IsMember({"work", "voxels"}))
+                  ->capture_default_str();
             addCacheFlag(sub);
             sub.add_option("--help-options", *help_options,
                            "print every backend's options (or BACKEND's) and exit")

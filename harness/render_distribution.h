@@ -21,6 +21,9 @@ class RenderDistribution {
  public:
   virtual ~RenderDistribution() = default;
 
+  // Collective, before brick(): the writer's estimate of where the render's work lies (null:
+  // none), which brick() then shares out instead of voxels.
+  virtual void balance(const WorkGrid* on_writer) = 0;
   // The brick of a volume of these dims that this process reads.
   virtual VolumeBrick brick(const Dims& whole) = 0;
   // Collectives: every process's range of its own voxels → the whole volume's.

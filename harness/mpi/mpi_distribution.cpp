@@ -44,9 +44,24 @@ MpiDistribution::MpiDistribution(MPI_Comm comm) : comm_(comm) {
   MPI_Comm_size(comm_, &size_);
 }
 
+void MpiDistribution::balance(const WorkGrid* on_writer) {
+  int cells[4] = {0, 0, 0, 0};  // whether there is an estimate, then its cells
+  if (rank_ == 0 && on_writer)
+    cells[0] = 1, std::copy(on_writer->cells.begin(), on_writer->cells.end(), cells + 1);
+  check(MPI_Bcast(cells, 4, MPI_INT, 0, comm_), "MPI_Bcast");
+  work_.reset();
+  if (!cells[0]) return;
+  WorkGrid work{{cells[1], cells[2], cells[3]}, {}};
+  work.cost = rank_ == 0 ? on_writer->cost
+                         : std::vector<float>(static_cast<std::size_t>(cells[1]) * cells[2] * cells[3]);
+  check(MPI_Bcast(work.cost.data(), static_cast<int>(work.cost.size()), MPI_FLOAT, 0, comm_),
+        "MPI_Bcast");
+  work_ = std::move(work);
+}
+
 VolumeBrick MpiDistribution::brick(const Dims& whole) {
   whole_ = whole;
-  bricks_ = kdSplit(whole, size_);
+  bricks_ = kdSplit(whole, size_, work_ ? &*work_ : nullptr);
   return brickOf(whole, bricks_[rank_].own);
 }
 

@@ -12,6 +12,7 @@
 
 #include <mpi.h>
 
+#include <optional>
 #include <vector>
 
 #include "harness/render_distribution.h"
@@ -26,6 +27,7 @@ class MpiDistribution final : public RenderDistribution {
   int rank() const { return rank_; }
   int size() const { return size_; }
 
+  void balance(const WorkGrid* on_writer) override;
   VolumeBrick brick(const Dims& whole) override;
   std::pair<double, double> wholeRange(std::pair<double, double> local) override;
   FieldRange wholeField(const FieldRange& local) override;
@@ -53,6 +55,7 @@ class MpiDistribution final : public RenderDistribution {
   int rank_ = 0, size_ = 1;
   Dims whole_{0, 0, 0};
   std::vector<KdBrick> bricks_;
+  std::optional<WorkGrid> work_;
 };
 
 // Thrown by agree() on every rank when one failed: its message names that rank.

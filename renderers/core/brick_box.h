@@ -7,6 +7,7 @@
 #include <cstddef>
 #include <optional>
 #include <utility>
+#include <vector>
 
 namespace svr {
 
@@ -28,6 +29,14 @@ struct VoxelBox {
 struct FieldRange {
   float lo = 0.f, hi = 0.f;  // of the shading field
   float largest = 0.f;       // the largest gradient component
+};
+
+// Where a render's work lies: the samples a ray caster shades, counted per cell of a coarse
+// lattice of the grid (the lattice of latticeIndices(dims, cells), renderers/core/volume_io.h;
+// core/work_estimate.h makes it). kdSplit shares this out instead of voxels.
+struct WorkGrid {
+  Dims cells{0, 0, 0};
+  std::vector<float> cost;  // per cell, x fastest
 };
 
 struct VolumeBrick {

@@ -90,6 +90,7 @@ SceneVolume loadSceneVolume(const JsonReader& spec, const fs::path& base_dir,
   out.source = fmt::format("procedural {} ({}³)", kind, out.volume.dims()[0]);
   // A brick of a procedural volume: made whole (closed forms are cheap), then cut.
   if (options.brick) out.volume = cropToBrick(out.volume, options.brick(out.volume.dims()));
+  if (options.lattice) out.volume = latticeOf(out.volume, *options.lattice);
   return out;
 }
 

@@ -35,8 +35,11 @@ struct KdBrick {
 
 // Splits `dims` into `count` boxes: the box is cut across its longest axis (the lowest such axis
 // on ties) into parts holding ⌊n/2⌋ and ⌈n/2⌉ bricks, at the plane that shares its voxels in that
-// proportion. Throws svr::Error when count < 1 or an axis would get a brick under one voxel thick.
-std::vector<KdBrick> kdSplit(const Dims& dims, int count);
+// proportion — or, given a work estimate, its work, as long as no brick holds more than
+// `max_share` times 1/count of the voxels (memory stays near 1/N). Throws svr::Error when
+// count < 1 or an axis would get a brick under one voxel thick.
+std::vector<KdBrick> kdSplit(const Dims& dims, int count, const WorkGrid* work = nullptr,
+                             double max_share = 1.25);
 
 // The brick as held by a process: `own` plus the ghost layers that lie inside the grid.
 VolumeBrick brickOf(const Dims& whole, const VoxelBox& own);

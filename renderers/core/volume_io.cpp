@@ -74,10 +74,56 @@ VolumeHeader readVolumeHeader(const std::string& path, const VolumeLoadOptions& 
   return std::move(source.header);
 }
 
+LatticeIndices latticeIndices(const Dims& dims, const Dims& samples) {
+  LatticeIndices at;
+  for (int a = 0; a < 3; ++a) {
+    const int n = std::clamp(samples[a], 1, dims[a]);
+    for (int i = 0; i < n; ++i)
+      at[a].push_back(n == 1 ? 0
+                             : static_cast<int>(std::lround(static_cast<double>(i) *
+                                                            (dims[a] - 1) / (n - 1))));
+  }
+  return at;
+}
+
+glm::dvec3 latticeSpacing(const Dims& dims, const glm::dvec3& spacing, const Dims& samples) {
+  glm::dvec3 out = spacing;
+  for (int a = 0; a < 3; ++a) {
+    const int n = std::clamp(samples[a], 1, dims[a]);
+    if (n > 1) out[a] = spacing[a] * (dims[a] - 1) / (n - 1);
+  }
+  return out;
+}
+
+Volume latticeOf(const Volume& whole, const Dims& samples) {
+  const LatticeIndices at = latticeIndices(whole.dims(), samples);
+  const std::size_t w = bytesPerVoxel(whole.type());
+  std::vector<std::byte> bytes(at[0].size() * at[1].size() * at[2].size() * w);
+  std::byte* dest = bytes.data();
+  for (const int z : at[2])
+    for (const int y : at[1])
+      for (const int x : at[0])
+        dest = std::copy_n(whole.data().data() + whole.index(x, y, z) * w, w, dest);
+  const Dims size{static_cast<int>(at[0].size()), static_cast<int>(at[1].size()),
+                  static_cast<int>(at[2].size())};
+  return Volume(size, latticeSpacing(whole.dims(), whole.spacing(), samples), whole.type(),
+                std::move(bytes), whole.source());
+}
+
 Volume loadVolume(const std::string& path, const VolumeLoadOptions& options) {
   const VolumeSource source = openSource(path, options);
   const VolumeHeader& h = source.header;
   if (h.encoding == "raw") detail::checkRawPayloadSize(source);
+  if (options.lattice) {
+    const LatticeIndices at = latticeIndices(h.dims, *options.lattice);
+    const Dims size{static_cast<int>(at[0].size()), static_cast<int>(at[1].size()),
+                    static_cast<int>(at[2].size())};
+    std::vector<std::byte> bytes = detail::readPayloadLattice(source, at);
+    const std::size_t width = bytesPerVoxel(h.type);
+    if (width > 1 && h.endian != nativeEndian()) swapBytes(bytes, width);
+    return Volume(size, latticeSpacing(h.dims, h.spacing, *options.lattice), h.type,
+                  std::move(bytes), path);
+  }
   if (options.brick) {
     const VolumeBrick brick = options.brick(h.dims);
     const Dims size = brick.stored.size();

@@ -4,6 +4,7 @@
 // failure is an svr::Error that names the file and what is wrong with it; the memory budget is
 // checked before a byte of voxel data is allocated. Voxels are converted to native byte order.
 
+#include <array>
 #include <cstdint>
 #include <functional>
 #include <glm/vec3.hpp>
@@ -50,7 +51,19 @@ struct VolumeLoadOptions {
   // A distributed render's process reads one brick: given the file's dims, the brick (and so
   // the voxels, brick.stored) to read. Empty: the whole volume.
   std::function<VolumeBrick(const Dims&)> brick;
+  // A coarse copy instead (work estimates): this many samples along each axis (at most the
+  // file's), spread over the whole grid, with the spacing that keeps the grid's extent.
+  std::optional<Dims> lattice;
 };
+
+// The voxel indices of each axis that a lattice of `samples` per axis takes from `dims`: the
+// first and last voxel and evenly spread ones between.
+using LatticeIndices = std::array<std::vector<int>, 3>;
+LatticeIndices latticeIndices(const Dims& dims, const Dims& samples);
+// The spacing of such a lattice: the same extent as the grid's.
+glm::dvec3 latticeSpacing(const Dims& dims, const glm::dvec3& spacing, const Dims& samples);
+// The voxels of `whole` at those indices (procedural volumes, made whole).
+Volume latticeOf(const Volume& whole, const Dims& samples);
 
 // Parses the header (and, for raw encodings, checks the data file's size against it). Throws
 // svr::Error naming the file for a missing file, a malformed or unsupported header, a data file

@@ -96,6 +96,40 @@ struct BoxSink final : PayloadSink {
   }
 };
 
+// A sub-lattice of the payload: of each chosen row, the chosen voxels' bytes that the chunk holds.
+struct LatticeSink final : PayloadSink {
+  const Dims dims;
+  const LatticeIndices& at;
+  const std::size_t voxel_bytes;
+  std::vector<std::byte>& out;
+  std::array<std::vector<int>, 3> slot;  // voxel index → its place in the lattice, −1: not taken
+  std::vector<unsigned char> chunk = std::vector<unsigned char>(std::size_t{1} << 20);
+  LatticeSink(const Dims& d, const LatticeIndices& a, std::size_t w, std::vector<std::byte>& o)
+      : dims(d), at(a), voxel_bytes(w), out(o) {
+    for (int axis = 0; axis < 3; ++axis) {
+      slot[axis].assign(dims[axis], -1);
+      for (std::size_t i = 0; i < at[axis].size(); ++i) slot[axis][at[axis][i]] = static_cast<int>(i);
+    }
+  }
+  std::span<unsigned char> window(std::uint64_t) override { return chunk; }
+  void commit(std::uint64_t from, std::size_t n) override {
+    const std::uint64_t w = voxel_bytes, row_bytes = static_cast<std::uint64_t>(dims[0]) * w;
+    const std::uint64_t end = from + n;
+    for (std::uint64_t row = from / row_bytes; row * row_bytes < end; ++row) {
+      const int sy = slot[1][row % dims[1]], sz = slot[2][row / dims[1]];
+      if (sy < 0 || sz < 0) continue;
+      const std::uint64_t dest_row = (static_cast<std::uint64_t>(sz) * at[1].size() + sy) * at[0].size();
+      for (std::size_t i = 0; i < at[0].size(); ++i) {
+        const std::uint64_t voxel = row * row_bytes + at[0][i] * w;
+        const std::uint64_t lo = std::max(voxel, from), hi = std::min(voxel + w, end);
+        if (lo < hi)
+          std::memcpy(out.data() + (dest_row + i) * w + (lo - voxel), chunk.data() + (lo - from),
+                      static_cast<std::size_t>(hi - lo));
+      }
+    }
+  }
+};
+
 void inflatePayload(std::FILE* file, const VolumeSource& source, PayloadSink& sink) {
   const VolumeHeader& h = source.header;
   const std::string stream = fmt::format("the {} stream in '{}'", h.encoding, h.data_file);
@@ -340,6 +374,38 @@ std::vector<std::byte> readPayloadBox(const VolumeSource& source, const VoxelBox
         throw Error(fmt::format("{}: cannot read {} bytes at byte {} of '{}' (voxel row y {} z {})",
                                 h.path, run, at, h.data_file, y, z));
       dest += run;
+    }
+  return out;
+}
+
+std::vector<std::byte> readPayloadLattice(const VolumeSource& source, const LatticeIndices& at) {
+  const VolumeHeader& h = source.header;
+  const FilePtr file(std::fopen(h.data_file.c_str(), "rb"));
+  if (!file)
+    throw Error(fmt::format("{}: cannot open data file '{}': {}", h.path, h.data_file,
+                            std::strerror(errno)));
+  const std::size_t w = bytesPerVoxel(h.type);
+  std::vector<std::byte> out(at[0].size() * at[1].size() * at[2].size() * w);
+  if (h.encoding != "raw") {
+    if (source.offset > static_cast<std::uint64_t>(INT64_MAX) ||
+        fseeko(file.get(), static_cast<off_t>(source.offset), SEEK_SET) != 0)
+      throw Error(
+          fmt::format("{}: cannot seek to byte {} of '{}'", h.path, source.offset, h.data_file));
+    LatticeSink sink(h.dims, at, w, out);
+    inflatePayload(file.get(), source, sink);
+    return out;
+  }
+  std::vector<std::byte> row(static_cast<std::size_t>(h.dims[0]) * w);
+  std::byte* dest = out.data();
+  for (const int z : at[2])
+    for (const int y : at[1]) {
+      const std::uint64_t from =
+          source.offset + (static_cast<std::uint64_t>(z) * h.dims[1] + y) * h.dims[0] * w;
+      if (fseeko(file.get(), static_cast<off_t>(from), SEEK_SET) != 0 ||
+          std::fread(row.data(), 1, row.size(), file.get()) != row.size())
+        throw Error(fmt::format("{}: cannot read {} bytes at byte {} of '{}' (voxel row y {} z {})",
+                                h.path, row.size(), from, h.data_file, y, z));
+      for (const int x : at[0]) dest = std::copy_n(row.data() + x * w, w, dest);
     }
   return out;
 }

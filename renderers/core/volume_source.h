@@ -39,6 +39,10 @@ std::vector<std::byte> readPayload(const VolumeSource& source);
 // read with a seek per run of contiguous bytes; compressed ones are inflated as a stream (all
 // of it, so that its checksum is checked as for a whole read) keeping only the box.
 std::vector<std::byte> readPayloadBox(const VolumeSource& source, const VoxelBox& box);
+// Only the voxels at the given indices along each axis (a sub-lattice: a coarse copy), x
+// fastest, in file byte order. Raw: a seek and a read per chosen row; compressed: the whole
+// stream, keeping only those voxels.
+std::vector<std::byte> readPayloadLattice(const VolumeSource& source, const LatticeIndices& at);
 
 // Readers per format (nrrd_header.cpp, metaimage_header.cpp). A header may be of any length
 // within `budget` bytes (and 1 MiB always) (the memory budget: the format sets no limit, and comments or key/value

@@ -1,0 +1,26 @@
+#pragma once
+// A render's work, estimated before any brick is read (DESIGN §5b), so that a distributed
+// render's kd-split can share out time rather than voxels. With the transmittance in front
+// passed between bricks (core/front_transmittance.h) a brick stops its rays where the whole
+// render does, so the bricks near the eye do most of the work: the engine at 512³, split at its
+// middle plane, left 64 % of it to the front brick. The estimate marches rays through a coarse
+// lattice of the volume (VolumeLoadOptions::lattice), classified as the render will be, front
+// to back with early termination, and counts each sample the ray caster would shade (α > 0) at
+// its cell; empty space, which the ray caster skips, counts nothing.
+
+#include "renderers/core/brick_box.h"
+#include "renderers/core/camera.h"
+#include "renderers/core/classification.h"
+
+namespace svr {
+
+// Samples per axis of the lattice an estimate reads: enough for planes to within about 1 % of
+// the grid; a 64³ lattice reads 1/512 of a 512³ volume.
+inline constexpr int kWorkLatticeSamples = 64;
+
+// `coarse`: a lattice of the volume (its spacing keeps the grid's extent), classified for this
+// render's transfer function. `rays_across`: probe rays along the image's longer side.
+WorkGrid estimateWork(const ClassifiedVolume& coarse, const Camera& camera, int width, int height,
+                      double termination, int rays_across = 128);
+
+}  // namespace svr
