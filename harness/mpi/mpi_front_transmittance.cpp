@@ -3,7 +3,6 @@
 #include <fmt/format.h>
 
 #include <algorithm>
-#include <tuple>
 
 #include "spectral/error.h"
 
@@ -48,25 +47,27 @@ MpiFrontTransmittance::MpiFrontTransmittance(MPI_Comm comm, const std::vector<Kd
       if (covers[rank][b] && covers[r][b]) (p < me ? in_front[b] : behind_[b]).push_back(r);
   }
 
-  std::vector<std::tuple<bool, bool, int>> keyed;  // (waits, nobody waits for it, block)
-  for (int b = 0; b < blocks; ++b)
-    if (covers[rank][b]) keyed.emplace_back(!in_front[b].empty(), behind_[b].empty(), b);
-  std::sort(keyed.begin(), keyed.end());
-  for (const auto& key : keyed) order_.push_back(std::get<2>(key));
-
-  incoming_of_block_.assign(blocks, -1);
-  sent_.assign(blocks, false);
-  for (const int b : order_) {
-    if (in_front[b].empty()) continue;
-    incoming_of_block_[b] = static_cast<int>(incoming_.size());
-    Incoming& in = incoming_.emplace_back();
-    in.block = b;
-    in.requests.resize(in_front[b].size());
+  incoming_.assign(blocks, {});
+  sent_.assign(blocks, true);
+  for (int b = 0; b < blocks; ++b) {
+    if (!covers[rank][b]) continue;
+    ++blocks_;
+    sent_[b] = false;
+    if (in_front[b].empty()) {
+      (behind_[b].empty() ? filler_ : ahead_).push_back(b);
+      continue;
+    }
+    waiting_.push_back(b);
+    Incoming& in = incoming_[b];
+    in.first = requests_.size();
     in.buffers.assign(in_front[b].size(), std::vector<float>(planes_size_));
-    for (std::size_t i = 0; i < in_front[b].size(); ++i)
+    for (std::size_t i = 0; i < in_front[b].size(); ++i) {
+      MPI_Request request;
       check(MPI_Irecv(in.buffers[i].data(), planes_size_, MPI_FLOAT, in_front[b][i], b, comm_,
-                      &in.requests[i]),
+                      &request),
             "MPI_Irecv");
+      requests_.push_back(request);
+    }
   }
   product_.resize(planes_size_);
 }
@@ -80,16 +81,42 @@ MpiFrontTransmittance::~MpiFrontTransmittance() {
   if (comm_ != MPI_COMM_NULL) MPI_Comm_free(&comm_);
 }
 
-const float* MpiFrontTransmittance::front(int block) {
-  const int index = incoming_of_block_[block];
-  if (index < 0) return nullptr;
-  Incoming& in = incoming_[index];
-  const auto t0 = std::chrono::steady_clock::now();
-  check(MPI_Waitall(static_cast<int>(in.requests.size()), in.requests.data(),
+bool MpiFrontTransmittance::arrived(int block) {
+  const Incoming& in = incoming_[block];
+  int flag = 0;
+  check(MPI_Testall(static_cast<int>(in.buffers.size()), requests_.data() + in.first, &flag,
                     MPI_STATUSES_IGNORE),
-        "MPI_Waitall");
-  waited_ms_ += msSince(t0);
-  in.taken = true;
+        "MPI_Testall");
+  return flag != 0;
+}
+
+int MpiFrontTransmittance::next() {
+  if (given_ == blocks_) return -1;
+  const auto take = [this](std::vector<int>& from, std::size_t i) {
+    const int b = from[i];
+    from.erase(from.begin() + static_cast<std::ptrdiff_t>(i));
+    ++given_;
+    return b;
+  };
+  for (;;) {
+    if (!ahead_.empty()) return take(ahead_, 0);
+    for (std::size_t i = 0; i < waiting_.size(); ++i)
+      if (arrived(waiting_[i])) return take(waiting_, i);
+    if (!filler_.empty()) return take(filler_, 0);
+    // Every block left waits on the bricks in front: until any of their T comes.
+    const auto t0 = std::chrono::steady_clock::now();
+    int index = 0;
+    check(MPI_Waitany(static_cast<int>(requests_.size()), requests_.data(), &index,
+                      MPI_STATUS_IGNORE),
+          "MPI_Waitany");
+    waited_ms_ += msSince(t0);
+    if (index == MPI_UNDEFINED) throw Error("front transmittance: a block was never received");
+  }
+}
+
+const float* MpiFrontTransmittance::front(int block) {
+  const Incoming& in = incoming_[block];
+  if (in.buffers.empty()) return nullptr;
   // The product in depth order, the same rounding on every run.
   std::copy(in.buffers[0].begin(), in.buffers[0].end(), product_.begin());
   for (std::size_t i = 1; i < in.buffers.size(); ++i)
@@ -123,13 +150,8 @@ void MpiFrontTransmittance::finished(int block, const LightIndependentImage& ima
 }
 
 void MpiFrontTransmittance::waitForAll() {
-  for (Incoming& in : incoming_)
-    if (!in.taken) {
-      check(MPI_Waitall(static_cast<int>(in.requests.size()), in.requests.data(),
-                        MPI_STATUSES_IGNORE),
-            "MPI_Waitall");
-      in.taken = true;
-    }
+  check(MPI_Waitall(static_cast<int>(requests_.size()), requests_.data(), MPI_STATUSES_IGNORE),
+        "MPI_Waitall");
   check(MPI_Waitall(static_cast<int>(sends_.size()), sends_.data(), MPI_STATUSES_IGNORE),
         "MPI_Waitall");
   sends_.clear();
@@ -143,8 +165,8 @@ void MpiFrontTransmittance::done() {
 
 void MpiFrontTransmittance::abandon() {
   if (closed_) return;
-  for (const int b : order_)
-    if (!sent_[b]) send(b, std::vector<float>(planes_size_, 1.f));
+  for (std::size_t b = 0; b < sent_.size(); ++b)
+    if (!sent_[b]) send(static_cast<int>(b), std::vector<float>(planes_size_, 1.f));
   waitForAll();
 }
 

@@ -5,9 +5,9 @@
 // covers it. Only ranks in front are waited on, so the dependencies run one way and the ranks
 // cannot deadlock; the receives are posted up front and the sends do not block.
 //
-// Order: a rank first renders the blocks nothing lies in front of, those that bricks behind wait
-// for first, then the blocks that wait on the bricks in front, in block order — the order in
-// which those are produced — so that the bricks behind start while the ones in front still work.
+// Order (next()): first the blocks nothing lies in front of that bricks behind wait for, so that
+// those start early; then, of the blocks that wait on the bricks in front, any whose
+// transmittance has come; while none has, the blocks nobody waits on; only then does it wait.
 
 #include <mpi.h>
 
@@ -28,7 +28,8 @@ class MpiFrontTransmittance final : public FrontTransmittance {
                         int t_channels);
   ~MpiFrontTransmittance() override;
 
-  const std::vector<int>& order() const override { return order_; }
+  int blocks() const override { return blocks_; }
+  int next() override;
   const float* front(int block) override;
   void finished(int block, const LightIndependentImage& image) override;
   void done() override;
@@ -36,22 +37,26 @@ class MpiFrontTransmittance final : public FrontTransmittance {
   double waitedMs() const override { return waited_ms_; }
 
  private:
+  // What comes from the bricks in front over one block: their T, in depth order, and its
+  // receives, requests_[first, first + buffers.size()).
   struct Incoming {
-    int block;
-    std::vector<MPI_Request> requests;        // one per brick in front, in depth order
-    std::vector<std::vector<float>> buffers;  // their T
-    bool taken = false;
+    std::size_t first = 0;
+    std::vector<std::vector<float>> buffers;
   };
+  bool arrived(int block);
   void send(int block, std::vector<float> transmittance);
   void waitForAll();
 
   MPI_Comm comm_ = MPI_COMM_NULL;
   int planes_size_ = 0;  // floats of one block's T
-  std::vector<int> order_;
-  std::vector<Incoming> incoming_;        // by block index into order_
-  std::vector<int> incoming_of_block_;    // block → index into incoming_, −1: none
-  std::vector<std::vector<int>> behind_;  // block → ranks behind whose footprint holds it
-  std::vector<bool> sent_;                // block → its T has gone to the bricks behind
+  int blocks_ = 0, given_ = 0;
+  std::vector<int> ahead_;    // nothing in front, bricks behind wait for them: first
+  std::vector<int> waiting_;  // waiting on bricks in front, in block order
+  std::vector<int> filler_;   // nothing in front, nobody waits for them
+  std::vector<Incoming> incoming_;        // by block
+  std::vector<MPI_Request> requests_;     // every receive, completed ones MPI_REQUEST_NULL
+  std::vector<std::vector<int>> behind_;  // by block: ranks behind whose footprint holds it
+  std::vector<bool> sent_;                // by block: its T has gone to the bricks behind
   std::vector<std::vector<float>> outgoing_;
   std::vector<MPI_Request> sends_;
   std::vector<float> product_;

@@ -23,15 +23,19 @@ class LightIndependentImage;
 
 class FrontTransmittance {
  public:
-  static constexpr int kBlock = 64;
+  static constexpr int kBlock = 32;
   static int blocksAcross(int pixels) { return (pixels + kBlock - 1) / kBlock; }
 
   virtual ~FrontTransmittance() = default;
-  // The blocks to render, in the order to render them; the others hold none of the brick's
-  // samples and keep S = 0, T = 1.
-  virtual const std::vector<int>& order() const = 0;
-  // The transmittance in front of the brick over this block, or null where nothing lies in
-  // front. Waits until the bricks in front have finished the block.
+  // How many blocks the brick renders; the others hold none of its samples and keep S = 0,
+  // T = 1.
+  virtual int blocks() const = 0;
+  // The next block to render, −1 when all have been given: one whose transmittance in front is
+  // known, waiting only when none is. Which block comes when may depend on timing; what each
+  // block holds does not.
+  virtual int next() = 0;
+  // The transmittance in front of the brick over a block next() gave, or null where nothing
+  // lies in front.
   virtual const float* front(int block) = 0;
   // The brick's image is final over this block: its T goes to the bricks behind.
   virtual void finished(int block, const LightIndependentImage& image) = 0;

@@ -89,21 +89,21 @@ void traceTiles(const raycast::TileJob& job, raycast::TileFn fn, ProgressCounter
   traceTilesOf(job, fn, progress);
 }
 
-// A brick with bricks in front: the blocks in the exchange's order, each with the transmittance
-// in front of it, passed on once done. The threads share a block at a time, so the calls into
+// A brick with bricks in front: the blocks as the exchange gives them, each with the
+// transmittance in front of it, passed on once done. The threads share a block at a time, so the calls into
 // the exchange (MPI in svr-mpi) stay on this thread.
 void traceBlocks(const raycast::TileJob& job, raycast::TileFn fn, FrontTransmittance& exchange,
                  ProgressCounter& progress) {
   constexpr int n = FrontTransmittance::kBlock;
   const int blocks_x = FrontTransmittance::blocksAcross(job.x1);
-  progress.stage(static_cast<long>(exchange.order().size()) * (n / kTile) * (n / kTile));
+  progress.stage(static_cast<long>(exchange.blocks()) * (n / kTile) * (n / kTile));
   // Blocks out of the order hold none of the brick's samples: S = 0, T = 1 there.
   LightIndependentImage& image = *job.image;
   for (int c = 0; c < image.transmittanceChannels(); ++c) {
     const auto plane = image.planeFloat(image.channels() + c);
     std::fill(plane.begin(), plane.end(), 1.f);
   }
-  for (const int b : exchange.order()) {
+  for (int b; (b = exchange.next()) >= 0;) {
     raycast::TileJob block = job;
     block.x0 = b % blocks_x * n, block.y0 = b / blocks_x * n;
     block.x1 = std::min(block.x0 + n, job.x1), block.y1 = std::min(block.y0 + n, job.y1);

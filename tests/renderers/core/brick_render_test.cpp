@@ -12,6 +12,7 @@
 #include "renderers/core/image_compositing.h"
 #include "renderers/core/scene_model.h"
 #include "renderers/core/volume_brick.h"
+#include "renderers/core/work_estimate.h"
 #include "renderers/registry.h"
 #include "spectral/error.h"
 #include "tests/renderers/test_scenes.h"
@@ -110,7 +111,8 @@ class SequentialFront final : public FrontTransmittance {
  public:
   SequentialFront(const LightIndependentImage& in_front, std::vector<int> order)
       : in_front_(in_front), order_(std::move(order)) {}
-  const std::vector<int>& order() const override { return order_; }
+  int blocks() const override { return static_cast<int>(order_.size()); }
+  int next() override { return given_ < order_.size() ? order_[given_++] : -1; }
   const float* front(int block) override {
     constexpr int n = kBlock;
     buffer_.resize(static_cast<std::size_t>(in_front_.transmittanceChannels()) * n * n);
@@ -125,6 +127,7 @@ class SequentialFront final : public FrontTransmittance {
  private:
   const LightIndependentImage& in_front_;
   std::vector<int> order_, finished_;
+  std::size_t given_ = 0;
   std::vector<float> buffer_;
   bool done_ = false;
 };
@@ -336,9 +339,58 @@ TEST(Bricks, FootprintsHoldEveryPixelWhoseRayCrossesTheBox) {
               << "pixel " << x << ", " << y << " (fov " << fov << ")";
         }
       EXPECT_GT(crossing, 0);
-      EXPECT_LT(blocks.size(), 12u) << "a quarter of the grid does not cover the whole view";
+      const int all = FrontTransmittance::blocksAcross(200) * FrontTransmittance::blocksAcross(170);
+      EXPECT_LT(static_cast<int>(blocks.size()), all) << "a quarter of the grid leaves blocks out";
     }
   }
+}
+
+TEST(Bricks, KdSplitSharesOutWorkWithinTheVoxelCap) {
+  const Dims dims{64, 8, 8};
+  WorkGrid work{dims, std::vector<float>(64 * 8 * 8, 0.f)};  // a cell per voxel
+  for (int z = 0; z < 8; ++z)
+    for (int y = 0; y < 8; ++y)
+      for (int x = 0; x < 16; ++x) work.cost[(z * 8 + y) * 64 + x] = 1.f;
+  // Uncapped, each brick takes half the work: the plane at x = 8.
+  EXPECT_EQ(kdSplit(dims, 2, &work, 100.0)[0].own.hi[0], 8);
+  // Within 1.25× the voxel share the high brick holds at most 40 of the 64 columns.
+  const auto capped = kdSplit(dims, 2, &work, 1.25);
+  EXPECT_EQ(capped[0].own.hi[0], 24);
+  EXPECT_EQ(capped[1].own.lo[0], 24);
+  // No work at all: voxels, as without an estimate.
+  std::fill(work.cost.begin(), work.cost.end(), 0.f);
+  EXPECT_EQ(kdSplit(dims, 2, &work)[0].own.hi[0], 32);
+  // An estimate of another grid is refused.
+  work.cells = {65, 8, 8};
+  EXPECT_THROW(kdSplit(dims, 2, &work), Error);
+}
+
+// A uniform absorber, 32 voxels deep along x, each sample keeping half the light: with early
+// termination at 0.01 a ray stops after 7 samples (0.5⁷ < 0.01 < 0.5⁶), so the work lies in
+// the 7–8 columns the rays enter by, on whichever side the eye is.
+TEST(Bricks, WorkEstimateFollowsEarlyTerminationFromTheEye) {
+  ClassifiedVolume cv;
+  cv.dims = {32, 8, 8};
+  cv.values.assign(32 * 8 * 8, 1.f);
+  cv.entries = 2, cv.value_lo = 0.0, cv.value_scale = 1.0, cv.step_world = 1.0;
+  cv.alpha = {0.f, 0.5f}, cv.transmission = {1.f, 0.5f};
+  const auto columns = [](const WorkGrid& w) {
+    std::vector<double> out(32, 0.0);
+    for (std::size_t i = 0; i < w.cost.size(); ++i) out[i % 32] += w.cost[i];
+    return out;
+  };
+  Camera camera{.eye = {-100, 0, 0}, .target = {0, 0, 0}, .up = {0, 0, 1}, .ortho_height = 8.0};
+  const auto from_low = columns(estimateWork(cv, camera, 64, 64, 0.01));
+  double near = 0, far = 0;
+  for (int x = 0; x < 32; ++x) (x <= 8 ? near : far) += from_low[x];
+  EXPECT_GT(near, 0.0);
+  EXPECT_EQ(far, 0.0);
+  camera.eye = {100, 0, 0};
+  const auto from_high = columns(estimateWork(cv, camera, 64, 64, 0.01));
+  for (int x = 0; x < 23; ++x) EXPECT_EQ(from_high[x], 0.0) << x;
+  // Without early termination every column takes the same work.
+  const auto all = columns(estimateWork(cv, camera, 64, 64, 0.0));
+  for (int x = 1; x < 31; ++x) EXPECT_EQ(all[x], all[1]) << x;
 }
 
 TEST(Bricks, PhantomHasSpectralTransmittance) {

@@ -209,6 +209,24 @@ TEST_P(ReadEveryTypeAndEndianness, DimsSpacingTypeValuesAndRange) {
   const auto [lo, hi] = std::minmax_element(values.begin(), values.end());
   EXPECT_EQ(volume.valueRange().first, *lo);
   EXPECT_EQ(volume.valueRange().second, *hi);
+
+  // A coarse lattice (work estimates): the first, last and evenly spread voxels of each axis,
+  // read with seeks or out of the stream, with the spacing that keeps the grid's extent.
+  VolumeLoadOptions coarse = w.options;
+  coarse.lattice = Dims{2, 2, 3};
+  const Volume lattice = loadVolume(w.path, coarse);
+  ASSERT_EQ(lattice.dims(), (Dims{2, 2, 3}));
+  for (int a = 0; a < 3; ++a)
+    EXPECT_DOUBLE_EQ(lattice.extent()[a], volume.extent()[a]) << "axis " << a;
+  const int xs[] = {0, 2}, ys[] = {0, 3}, zs[] = {0, 2, 4};  // of 3 × 4 × 5
+  for (int z = 0; z < 3; ++z)
+    for (int y = 0; y < 2; ++y)
+      for (int x = 0; x < 2; ++x)
+        ASSERT_EQ(lattice.value(x, y, z), volume.value(xs[x], ys[y], zs[z]))
+            << "lattice voxel " << x << ", " << y << ", " << z;
+  const Volume same = latticeOf(volume, {2, 2, 3});
+  ASSERT_EQ(same.data().size(), lattice.data().size());
+  EXPECT_TRUE(std::equal(same.data().begin(), same.data().end(), lattice.data().begin()));
 }
 
 INSTANTIATE_TEST_SUITE_P(VolumeIo, ReadEveryTypeAndEndianness, ::testing::ValuesIn(everyCase()),
