@@ -270,11 +270,17 @@ int runRender(const RenderOptions& o) {
   const WavelengthGrid grid = WavelengthGrid::standard();
   VolumeLoadOptions volume_options;
   if (o.memory_budget) volume_options.memory_budget = *o.memory_budget;
-  if (dist) {  // bricks that take equal time rather than equal voxels, where the backend allows
+  // Bricks that take equal time rather than equal voxels, where the backend allows. Only an
+  // optimisation: if the estimate fails, the bricks share voxels and the load that follows
+  // reports what is wrong with the scene or its volume, in the volume's own coordinates.
+  std::string estimate_failure;
+  if (dist) {
     std::optional<WorkGrid> work;
-    phase(dist, [&] {
-      if (writer && o.balance == "work") work = estimateRenderWork(o, grid, volume_options);
-    });
+    if (writer && o.balance == "work") try {
+        work = estimateRenderWork(o, grid, volume_options);
+      } catch (const std::exception& e) {
+        estimate_failure = e.what();
+      }
     dist->balance(work ? &*work : nullptr);
     volume_options.brick = [dist](const Dims& whole) { return dist->brick(whole); };
   }
@@ -315,6 +321,8 @@ int runRender(const RenderOptions& o) {
   const auto t_render = clock::now();
   LightIndependentImage image;
   std::vector<std::string> notes;  // shown after the progress bar, not through it
+  if (!estimate_failure.empty())
+    notes.push_back("the bricks share voxels: estimating the work failed: " + estimate_failure);
   RenderRequest request = sceneRequest(scene, classified);
   request.memory_budget = volume_options.memory_budget;
   request.note = [&](const std::string& note) { notes.push_back(note); };

@@ -7,9 +7,11 @@ brick stops every rank with that rank's message and leaves no output.
 
 Usage: mpi_render.py SVR SVR_MPI DATA_DIR
 Images are compared with idiff (openimageio-tools) to 2e-5 absolute: the rounding of the
-compositing order. Early termination is off in these scenes: with it a brick cannot see the
-transmittance in front of it and may go on where the whole render stopped (within ε; the
-in-process test Bricks.EarlyTerminationDiffersByAtMostItsThreshold bounds that).
+compositing order. Raycast bricks take the transmittance in front of them from the ranks in
+front (renderers/core/front_transmittance.h), so they stop their rays where the whole render
+does and its scenes keep early termination on; shear-warp bricks cannot see it and may go on
+where the whole render stopped (within ε; Bricks.EarlyTerminationDiffersByAtMostItsThreshold
+bounds that), so its scenes turn early termination off.
 """
 import gzip
 import json
@@ -28,7 +30,7 @@ ENV = dict(os.environ, OMP_NUM_THREADS="1",
 problems = []
 
 
-def engine_scene(volume_file):
+def engine_scene(volume_file, early_termination):
     with open(os.path.join(DATA, "scenes", "engine.json")) as f:
         scene = json.load(f)
     scene["volume"] = {"file": volume_file}
@@ -36,15 +38,15 @@ def engine_scene(volume_file):
         r = m["reflectance"]
         if isinstance(r, dict) and "csv" in r:
             r["csv"] = os.path.join(DATA, "scenes", r["csv"])
-    scene["render"]["early_termination"] = 0
+    scene["render"]["early_termination"] = early_termination
     scene["image"] = {"width": 72, "height": 64}
     return scene
 
 
-def phantom_scene():
+def phantom_scene(early_termination):
     with open(os.path.join(DATA, "scenes", "phantom.json")) as f:
         scene = json.load(f)
-    scene.setdefault("render", {})["early_termination"] = 0
+    scene.setdefault("render", {})["early_termination"] = early_termination
     scene["image"] = {"width": 48, "height": 48}
     return scene
 
@@ -65,7 +67,7 @@ def cthead_scene():
         "background": "ColorChecker/white 9.5 (.05 D)",
         "camera": {"azimuth": -30, "elevation": 20},
         "image": {"width": 64, "height": 64},
-        "render": {"step": 1.0, "early_termination": 0},
+        "render": {"step": 1.0, "early_termination": 0.01},
         "model": "rgb",
     }
 
@@ -87,7 +89,7 @@ def same_image(a, b, what):
     return True
 
 
-def check_equal(name, scene_path, scratch, renderer, model, counts):
+def check_equal(name, scene_path, scratch, renderer, model, counts, balance="work"):
     single = os.path.join(scratch, f"{name}_{renderer}_{model}_single".replace(":", "_"))
     r = run([SVR, "render", scene_path, "--out", single, "--renderer", renderer,
              "--model", model, "-q"])
@@ -96,8 +98,9 @@ def check_equal(name, scene_path, scratch, renderer, model, counts):
         return
     for n in counts:
         out = single.replace("_single", f"_np{n}")
-        r = mpirun(n, [scene_path, "--out", out, "--renderer", renderer, "--model", model, "-q"])
-        what = f"{name} {renderer} {model} np {n}"
+        r = mpirun(n, [scene_path, "--out", out, "--renderer", renderer, "--model", model, "-q",
+                       "--balance", balance])
+        what = f"{name} {renderer} {model} np {n} balance {balance}"
         if r.returncode != 0:
             problems.append(f"{what}: exit {r.returncode}: {r.stderr[-800:]}")
             continue
@@ -108,7 +111,14 @@ def check_equal(name, scene_path, scratch, renderer, model, counts):
             if len(per) != n:
                 problems.append(f"{what}: render.json lists {len(per)} processes")
             print(f"ok: {what} (" + ", ".join(
-                f"rank {p['rank']} {p['render_ms']:.0f} ms" for p in per) + ")")
+                f"rank {p['rank']} x {p['own']['lo'][0]}–{p['own']['hi'][0]} "
+                f"{p['render_ms']:.0f} ms" for p in per) + ")")
+            if renderer == "raycast" and balance == "work" and n == 2 and name.startswith("engine"):
+                # The view's work lies mostly in the brick nearer the eye (high x here): the
+                # split gives that brick fewer voxels, within 1.25× of a half for the other.
+                lo_x = [p["own"]["hi"][0] for p in per if p["own"]["lo"][0] == 0][0]
+                if not 128 < lo_x <= 160:
+                    problems.append(f"{what}: work balance split x at {lo_x}, expected 129–160")
 
 
 def peaks(out):
@@ -133,26 +143,29 @@ def check_memory(scratch):
         with open(paths[name], "w") as f:
             json.dump(scene, f)
     results = {}
-    for name, n in (("tiny", 4), ("frog", 1), ("frog", 4)):
-        out = os.path.join(scratch, f"mem_{name}_{n}")
-        r = mpirun(n, [paths[name], "--out", out, "-q"])
+    for name, n, balance in (("tiny", 4, "voxels"), ("frog", 1, "voxels"), ("frog", 4, "voxels"),
+                             ("frog", 4, "work")):
+        out = os.path.join(scratch, f"mem_{name}_{n}_{balance}")
+        r = mpirun(n, [paths[name], "--out", out, "-q", "--balance", balance])
         if r.returncode != 0:
             problems.append(f"memory run {name} np {n}: {r.stderr[-800:]}")
             return
-        results[(name, n)] = peaks(out)
-    base = max(results[("tiny", 4)])
-    whole = results[("frog", 1)][0] - base
-    # Own share plus ghost layers (2 voxels each side of each cut), and 16 MiB for allocator
-    # and page-granularity slack.
-    allowed = whole / 4 * 1.10 + (16 << 20)
-    worst = max(results[("frog", 4)]) - base
-    print(f"memory: whole volume {whole / 2**20:.0f} MiB beyond a process's base; "
-          f"4 ranks: at most {worst / 2**20:.0f} MiB each (allowed {allowed / 2**20:.0f})")
+        results[(name, n, balance)] = peaks(out)
+    base = max(results[("tiny", 4, "voxels")])
+    whole = results[("frog", 1, "voxels")][0] - base
     if whole < (100 << 20):
         problems.append(f"memory: the whole volume took only {whole} bytes beyond the base")
-    if worst > allowed:
-        problems.append(f"memory: a rank of 4 held {worst} bytes beyond its base, over "
-                        f"{allowed:.0f} (1/4 of {whole} plus ghosts)")
+    # Own share plus ghost layers (2 voxels each side of each cut), and 16 MiB for allocator
+    # and page-granularity slack; a work-balanced brick may hold 1.25× its share.
+    for balance, share in (("voxels", 1.0), ("work", 1.25)):
+        allowed = whole / 4 * share * 1.10 + (16 << 20)
+        worst = max(results[("frog", 4, balance)]) - base
+        print(f"memory: whole volume {whole / 2**20:.0f} MiB beyond a process's base; 4 ranks, "
+              f"balance {balance}: at most {worst / 2**20:.0f} MiB each "
+              f"(allowed {allowed / 2**20:.0f})")
+        if worst > allowed:
+            problems.append(f"memory: balance {balance}: a rank of 4 held {worst} bytes beyond "
+                            f"its base, over {allowed:.0f} ({share} × 1/4 of {whole} plus ghosts)")
 
 
 def check_failure(scratch):
@@ -197,11 +210,15 @@ def main():
         with open(os.path.join(scratch, "engine.nhdr"), "w") as f:
             f.write("NRRD0004\ntype: uint8\ndimension: 3\nsizes: 256 256 128\n"
                     "spacings: 1 1 1\nencoding: raw\ndata file: engine.raw\n")
-        scenes = {
-            "engine_gz": engine_scene(
-                os.path.join(DATA, "volumes", "engine_256x256x128_uint8.nhdr")),
-            "engine_raw": engine_scene(os.path.join(scratch, "engine.nhdr")),
-            "phantom": phantom_scene(),
+        engine_gz = os.path.join(DATA, "volumes", "engine_256x256x128_uint8.nhdr")
+        engine_raw = os.path.join(scratch, "engine.nhdr")
+        scenes = {  # early termination on for raycast, off for shear-warp (above)
+            "engine_gz": engine_scene(engine_gz, 0.01),
+            "engine_raw": engine_scene(engine_raw, 0.01),
+            "engine_gz_all": engine_scene(engine_gz, 0),
+            "engine_raw_all": engine_scene(engine_raw, 0),
+            "phantom": phantom_scene(0.01),
+            "phantom_all": phantom_scene(0),
             "cthead": cthead_scene(),
         }
         paths = {}
@@ -211,12 +228,15 @@ def main():
                 json.dump(scene, f)
         check_equal("engine_gz", paths["engine_gz"], scratch, "raycast", "rgb", [1, 2, 3, 4])
         check_equal("engine_raw", paths["engine_raw"], scratch, "raycast", "factor:6", [2, 3, 4])
-        check_equal("engine_raw", paths["engine_raw"], scratch, "shearwarp", "rgb", [1, 2, 3, 4])
-        check_equal("engine_gz", paths["engine_gz"], scratch, "shearwarp", "factor:6", [2, 4])
+        check_equal("engine_raw", paths["engine_raw"], scratch, "raycast", "rgb", [2, 4], "voxels")
+        check_equal("engine_raw_all", paths["engine_raw_all"], scratch, "shearwarp", "rgb",
+                    [1, 2, 3, 4])
+        check_equal("engine_gz_all", paths["engine_gz_all"], scratch, "shearwarp", "factor:6",
+                    [2, 4])
         check_equal("phantom", paths["phantom"], scratch, "raycast", "factor:6", [1, 2, 3, 4])
-        check_equal("phantom", paths["phantom"], scratch, "shearwarp", "factor:6", [3, 4])
+        check_equal("phantom_all", paths["phantom_all"], scratch, "shearwarp", "factor:6", [3, 4])
         check_equal("cthead", paths["cthead"], scratch, "raycast", "rgb", [3])
-        r = mpirun(2, [paths["phantom"], "--out", os.path.join(scratch, "x"), "--renderer",
+        r = mpirun(2, [paths["phantom_all"], "--out", os.path.join(scratch, "x"), "--renderer",
                        "splat", "-q"])
         if r.returncode == 0 or "cannot render one brick" not in r.stderr:
             problems.append(f"splat bricks: exit {r.returncode}, {r.stderr[-400:]!r}")
