@@ -6,6 +6,7 @@
 
 #include <cctype>
 #include <chrono>
+#include <ctime>
 #include <optional>
 #include <filesystem>
 #include <memory>
@@ -181,6 +182,14 @@ std::uint64_t peakResidentBytes() {
   return static_cast<std::uint64_t>(usage.ru_maxrss) * 1024;
 }
 
+// CPU time of this process's threads, in ms: the work a rank did, unlike its wall time not
+// stretched by waiting or by sharing a core.
+double processCpuMs() {
+  timespec t{};
+  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t);
+  return t.tv_sec * 1e3 + t.tv_nsec * 1e-6;
+}
+
 nlohmann::json boxJson(const VoxelBox& box) {
   return {{"lo", box.lo}, {"hi", box.hi}};
 }
@@ -326,7 +335,7 @@ int runRender(const RenderOptions& o) {
   RenderRequest request = sceneRequest(scene, classified);
   request.memory_budget = volume_options.memory_budget;
   request.note = [&](const std::string& note) { notes.push_back(note); };
-  double brick_render_ms = 0, composite_ms = 0, front_wait_ms = 0;
+  double brick_render_ms = 0, brick_render_cpu_ms = 0, composite_ms = 0, front_wait_ms = 0;
   const auto renderFrame = [&](const ProgressFn& progress) {
     phase(dist, [&] {
       // Bricks behind others stop their rays where the whole render does.
@@ -336,6 +345,7 @@ int runRender(const RenderOptions& o) {
                                          classified.t_channels, scene.volume.spacing());
       request.front = front.get();
       const auto t0 = clock::now();
+      const double cpu0 = processCpuMs();
       try {
         image = renderer->render(request, progress);
       } catch (...) {
@@ -343,6 +353,7 @@ int runRender(const RenderOptions& o) {
         throw;
       }
       brick_render_ms = msSince(t0);  // this process's own work, before waiting for the others
+      brick_render_cpu_ms = processCpuMs() - cpu0;
       front_wait_ms = front ? front->waitedMs() : 0.0;
       request.front = nullptr;
     });
@@ -375,6 +386,7 @@ int runRender(const RenderOptions& o) {
                                 {"volume_bytes", scene.volume.bytes()},
                                 {"render_ms", brick_render_ms},
                                 {"composite_ms", composite_ms},
+                                {"render_cpu_ms", brick_render_cpu_ms},
                                 {"front_wait_ms", front_wait_ms},
                                 {"peak_resident_bytes", peakResidentBytes()}});
   }
