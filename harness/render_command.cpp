@@ -269,6 +269,25 @@ std::optional<WorkGrid> estimateRenderWork(const RenderOptions& o, const Wavelen
                       scene.termination);
 }
 
+// A distributed render's bricks, decided before any is read: equal time rather than equal
+// voxels, where the backend allows. Only an optimisation: if the estimate fails, the bricks
+// share voxels and the load that follows reports what is wrong with the scene or its volume, in
+// the volume's own coordinates. Returns that failure's message, or "".
+std::string splitIntoBricks(const RenderOptions& o, const WavelengthGrid& grid,
+                            VolumeLoadOptions& volume_options) {
+  RenderDistribution* const dist = o.distribution;
+  std::string failure;
+  std::optional<WorkGrid> work;
+  if (dist->writes() && o.balance == "work") try {
+      work = estimateRenderWork(o, grid, volume_options);
+    } catch (const std::exception& e) {
+      failure = e.what();
+    }
+  dist->balance(work ? &*work : nullptr);
+  volume_options.brick = [dist](const Dims& whole) { return dist->brick(whole); };
+  return failure;
+}
+
 int runRender(const RenderOptions& o) {
   using clock = std::chrono::steady_clock;
   RenderDistribution* const dist = o.distribution;
@@ -279,20 +298,8 @@ int runRender(const RenderOptions& o) {
   const WavelengthGrid grid = WavelengthGrid::standard();
   VolumeLoadOptions volume_options;
   if (o.memory_budget) volume_options.memory_budget = *o.memory_budget;
-  // Bricks that take equal time rather than equal voxels, where the backend allows. Only an
-  // optimisation: if the estimate fails, the bricks share voxels and the load that follows
-  // reports what is wrong with the scene or its volume, in the volume's own coordinates.
   std::string estimate_failure;
-  if (dist) {
-    std::optional<WorkGrid> work;
-    if (writer && o.balance == "work") try {
-        work = estimateRenderWork(o, grid, volume_options);
-      } catch (const std::exception& e) {
-        estimate_failure = e.what();
-      }
-    dist->balance(work ? &*work : nullptr);
-    volume_options.brick = [dist](const Dims& whole) { return dist->brick(whole); };
-  }
+  if (dist) estimate_failure = splitIntoBricks(o, grid, volume_options);
   std::optional<Loaded> loaded;
   phase(dist, [&] { loaded.emplace(loadForRender(o, grid, volume_options)); });
   Scene& scene = loaded->scene;
