@@ -278,7 +278,7 @@ std::string splitIntoBricks(const RenderOptions& o, const WavelengthGrid& grid,
   RenderDistribution* const dist = o.distribution;
   std::string failure;
   std::optional<WorkGrid> work;
-  if (dist->writes() && o.balance == "work") try {
+  if (dist->writes() && dist->processes() > 1 && o.balance == "work") try {
       work = estimateRenderWork(o, grid, volume_options);
     } catch (const std::exception& e) {
       failure = e.what();

@@ -41,6 +41,8 @@ class RenderDistribution {
                                           const Camera& camera, const glm::dvec3& spacing) = 0;
   // Every process's facts (its brick, times, memory) as one array, on the writer.
   virtual nlohmann::json gather(const nlohmann::json& local) = 0;
+  // How many processes share the render.
+  virtual int processes() const = 0;
   // Whether this process writes the outputs and shows progress.
   virtual bool writes() const = 0;
   // Every process calls this at the end of each phase with that phase's failure (null: none).

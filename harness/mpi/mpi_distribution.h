@@ -38,6 +38,7 @@ class MpiDistribution final : public RenderDistribution {
                                   const glm::dvec3& spacing) override;
   nlohmann::json gather(const nlohmann::json& local) override;
   bool writes() const override { return rank_ == 0; }
+  int processes() const override { return size_; }
   void agree(const std::exception_ptr& failure) override;
 
   // "binary swap" or "reduce": how composite() combines images at this rank count.
