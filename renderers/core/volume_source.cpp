@@ -341,19 +341,28 @@ std::vector<std::byte> readPayload(const VolumeSource& source) {
   return out;
 }
 
-std::vector<std::byte> readPayloadBox(const VolumeSource& source, const VoxelBox& box) {
+namespace {
+// The data file, open; a compressed payload at its first byte (raw ones are read with seeks).
+FilePtr openPayload(const VolumeSource& source) {
   const VolumeHeader& h = source.header;
-  const FilePtr file(std::fopen(h.data_file.c_str(), "rb"));
+  FilePtr file(std::fopen(h.data_file.c_str(), "rb"));
   if (!file)
     throw Error(fmt::format("{}: cannot open data file '{}': {}", h.path, h.data_file,
                             std::strerror(errno)));
+  if (h.encoding != "raw" && (source.offset > static_cast<std::uint64_t>(INT64_MAX) ||
+                              fseeko(file.get(), static_cast<off_t>(source.offset), SEEK_SET) != 0))
+    throw Error(
+        fmt::format("{}: cannot seek to byte {} of '{}'", h.path, source.offset, h.data_file));
+  return file;
+}
+}  // namespace
+
+std::vector<std::byte> readPayloadBox(const VolumeSource& source, const VoxelBox& box) {
+  const VolumeHeader& h = source.header;
+  const FilePtr file = openPayload(source);
   const std::size_t w = bytesPerVoxel(h.type);
   std::vector<std::byte> out(box.voxels() * w);
   if (h.encoding != "raw") {
-    if (source.offset > static_cast<std::uint64_t>(INT64_MAX) ||
-        fseeko(file.get(), static_cast<off_t>(source.offset), SEEK_SET) != 0)
-      throw Error(
-          fmt::format("{}: cannot seek to byte {} of '{}'", h.path, source.offset, h.data_file));
     BoxSink sink(h.dims, box, w, out);
     inflatePayload(file.get(), source, sink);
     return out;
@@ -380,17 +389,10 @@ std::vector<std::byte> readPayloadBox(const VolumeSource& source, const VoxelBox
 
 std::vector<std::byte> readPayloadLattice(const VolumeSource& source, const LatticeIndices& at) {
   const VolumeHeader& h = source.header;
-  const FilePtr file(std::fopen(h.data_file.c_str(), "rb"));
-  if (!file)
-    throw Error(fmt::format("{}: cannot open data file '{}': {}", h.path, h.data_file,
-                            std::strerror(errno)));
+  const FilePtr file = openPayload(source);
   const std::size_t w = bytesPerVoxel(h.type);
   std::vector<std::byte> out(at[0].size() * at[1].size() * at[2].size() * w);
   if (h.encoding != "raw") {
-    if (source.offset > static_cast<std::uint64_t>(INT64_MAX) ||
-        fseeko(file.get(), static_cast<off_t>(source.offset), SEEK_SET) != 0)
-      throw Error(
-          fmt::format("{}: cannot seek to byte {} of '{}'", h.path, source.offset, h.data_file));
     LatticeSink sink(h.dims, at, w, out);
     inflatePayload(file.get(), source, sink);
     return out;
