@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <string>
 
+#include "harness/mpi/mpi_check.h"
 #include "harness/mpi/mpi_front_transmittance.h"
 #include "renderers/core/image_compositing.h"
 
@@ -27,14 +28,6 @@ void overOperation(void* in, void* inout, int* len, MPI_Datatype*) {
                            reduce_layout.t_channels);
 }
 
-void check(int code, const char* what) {
-  if (code == MPI_SUCCESS) return;
-  char text[MPI_MAX_ERROR_STRING];
-  int length = 0;
-  MPI_Error_string(code, text, &length);
-  throw Error(fmt::format("MPI: {} failed: {}", what, std::string(text, length)));
-}
-
 bool powerOfTwo(int n) { return n > 0 && (n & (n - 1)) == 0; }
 
 }  // namespace
@@ -48,13 +41,13 @@ void MpiDistribution::balance(const WorkGrid* on_writer) {
   int cells[4] = {0, 0, 0, 0};  // whether there is an estimate, then its cells
   if (rank_ == 0 && on_writer)
     cells[0] = 1, std::copy(on_writer->cells.begin(), on_writer->cells.end(), cells + 1);
-  check(MPI_Bcast(cells, 4, MPI_INT, 0, comm_), "MPI_Bcast");
+  checkMpi(MPI_Bcast(cells, 4, MPI_INT, 0, comm_), "MPI_Bcast");
   work_.reset();
   if (!cells[0]) return;
   WorkGrid work{{cells[1], cells[2], cells[3]}, {}};
   work.cost = rank_ == 0 ? on_writer->cost
                          : std::vector<float>(static_cast<std::size_t>(cells[1]) * cells[2] * cells[3]);
-  check(MPI_Bcast(work.cost.data(), static_cast<int>(work.cost.size()), MPI_FLOAT, 0, comm_),
+  checkMpi(MPI_Bcast(work.cost.data(), static_cast<int>(work.cost.size()), MPI_FLOAT, 0, comm_),
         "MPI_Bcast");
   work_ = std::move(work);
 }
@@ -67,16 +60,16 @@ VolumeBrick MpiDistribution::brick(const Dims& whole) {
 
 std::pair<double, double> MpiDistribution::wholeRange(std::pair<double, double> local) {
   double lo = local.first, hi = local.second;
-  check(MPI_Allreduce(MPI_IN_PLACE, &lo, 1, MPI_DOUBLE, MPI_MIN, comm_), "MPI_Allreduce");
-  check(MPI_Allreduce(MPI_IN_PLACE, &hi, 1, MPI_DOUBLE, MPI_MAX, comm_), "MPI_Allreduce");
+  checkMpi(MPI_Allreduce(MPI_IN_PLACE, &lo, 1, MPI_DOUBLE, MPI_MIN, comm_), "MPI_Allreduce");
+  checkMpi(MPI_Allreduce(MPI_IN_PLACE, &hi, 1, MPI_DOUBLE, MPI_MAX, comm_), "MPI_Allreduce");
   return {lo, hi};
 }
 
 FieldRange MpiDistribution::wholeField(const FieldRange& local) {
   FieldRange out = local;
-  check(MPI_Allreduce(MPI_IN_PLACE, &out.lo, 1, MPI_FLOAT, MPI_MIN, comm_), "MPI_Allreduce");
+  checkMpi(MPI_Allreduce(MPI_IN_PLACE, &out.lo, 1, MPI_FLOAT, MPI_MIN, comm_), "MPI_Allreduce");
   float hi[2] = {local.hi, local.largest};
-  check(MPI_Allreduce(MPI_IN_PLACE, hi, 2, MPI_FLOAT, MPI_MAX, comm_), "MPI_Allreduce");
+  checkMpi(MPI_Allreduce(MPI_IN_PLACE, hi, 2, MPI_FLOAT, MPI_MAX, comm_), "MPI_Allreduce");
   out.hi = hi[0], out.largest = hi[1];
   return out;
 }
@@ -115,7 +108,7 @@ std::vector<float> MpiDistribution::binarySwap(MPI_Comm depth, int position,
     const std::size_t keep_begin = front ? begin : mid, keep_end = front ? mid : end;
     const std::size_t send_begin = front ? mid : begin, send_end = front ? end : mid;
     received.resize((keep_end - keep_begin) * stride);
-    check(MPI_Sendrecv(samples.data() + send_begin * stride,
+    checkMpi(MPI_Sendrecv(samples.data() + send_begin * stride,
                        static_cast<int>((send_end - send_begin) * stride), MPI_FLOAT, partner, bit,
                        received.data(), static_cast<int>(received.size()), MPI_FLOAT, partner, bit,
                        depth, MPI_STATUS_IGNORE),
@@ -135,7 +128,7 @@ std::vector<float> MpiDistribution::binarySwap(MPI_Comm depth, int position,
   int root = 0;
   {
     const int is_root = rank_ == 0 ? position : 0;
-    check(MPI_Allreduce(&is_root, &root, 1, MPI_INT, MPI_MAX, depth), "MPI_Allreduce");
+    checkMpi(MPI_Allreduce(&is_root, &root, 1, MPI_INT, MPI_MAX, depth), "MPI_Allreduce");
   }
   const auto regions = swapRegions(pixels);
   std::vector<int> counts(size_), displacements(size_);
@@ -144,7 +137,7 @@ std::vector<float> MpiDistribution::binarySwap(MPI_Comm depth, int position,
     displacements[d] = static_cast<int>(regions[d].first * stride);
   }
   std::vector<float> whole(rank_ == 0 ? samples.size() : 0);
-  check(MPI_Gatherv(samples.data() + begin * stride, static_cast<int>((end - begin) * stride),
+  checkMpi(MPI_Gatherv(samples.data() + begin * stride, static_cast<int>((end - begin) * stride),
                     MPI_FLOAT, whole.data(), counts.data(), displacements.data(), MPI_FLOAT, root,
                     depth),
         "MPI_Gatherv");
@@ -155,10 +148,10 @@ std::vector<float> MpiDistribution::reduceInDepthOrder(MPI_Comm depth, std::vect
                                                        int stride, int k,
                                                        int t_channels) const {
   MPI_Datatype pixel;
-  check(MPI_Type_contiguous(stride, MPI_FLOAT, &pixel), "MPI_Type_contiguous");
+  checkMpi(MPI_Type_contiguous(stride, MPI_FLOAT, &pixel), "MPI_Type_contiguous");
   MPI_Type_commit(&pixel);
   MPI_Op over;
-  check(MPI_Op_create(&overOperation, /*commute=*/0, &over), "MPI_Op_create");
+  checkMpi(MPI_Op_create(&overOperation, /*commute=*/0, &over), "MPI_Op_create");
   reduce_layout = {k, t_channels};
   // The result lands on depth position 0, then goes to world rank 0 if that is another rank.
   std::vector<float> result(samples.size());
@@ -166,17 +159,17 @@ std::vector<float> MpiDistribution::reduceInDepthOrder(MPI_Comm depth, std::vect
                               static_cast<int>(samples.size() / stride), pixel, over, 0, depth);
   MPI_Op_free(&over);
   MPI_Type_free(&pixel);
-  check(code, "MPI_Reduce");
+  checkMpi(code, "MPI_Reduce");
   int position = 0;
   MPI_Comm_rank(depth, &position);
   int front_rank = position == 0 ? rank_ : 0;
-  check(MPI_Allreduce(MPI_IN_PLACE, &front_rank, 1, MPI_INT, MPI_MAX, comm_), "MPI_Allreduce");
+  checkMpi(MPI_Allreduce(MPI_IN_PLACE, &front_rank, 1, MPI_INT, MPI_MAX, comm_), "MPI_Allreduce");
   if (front_rank != 0) {
     if (position == 0)
-      check(MPI_Send(result.data(), static_cast<int>(result.size()), MPI_FLOAT, 0, 1, comm_),
+      checkMpi(MPI_Send(result.data(), static_cast<int>(result.size()), MPI_FLOAT, 0, 1, comm_),
             "MPI_Send");
     else if (rank_ == 0)
-      check(MPI_Recv(result.data(), static_cast<int>(result.size()), MPI_FLOAT, front_rank, 1,
+      checkMpi(MPI_Recv(result.data(), static_cast<int>(result.size()), MPI_FLOAT, front_rank, 1,
                      comm_, MPI_STATUS_IGNORE),
             "MPI_Recv");
   }
@@ -203,7 +196,7 @@ LightIndependentImage MpiDistribution::composite(const LightIndependentImage& lo
   const int position =
       static_cast<int>(std::find(order.begin(), order.end(), rank_) - order.begin());
   MPI_Comm depth;
-  check(MPI_Comm_split(comm_, 0, position, &depth), "MPI_Comm_split");
+  checkMpi(MPI_Comm_split(comm_, 0, position, &depth), "MPI_Comm_split");
   std::vector<float> samples = interleavedSamples(local);
   std::vector<float> whole = powerOfTwo(size_)
                                  ? binarySwap(depth, position, std::move(samples), stride, k, kt)
@@ -217,11 +210,11 @@ nlohmann::json MpiDistribution::gather(const nlohmann::json& local) {
   const std::string text = local.dump();
   const int length = static_cast<int>(text.size());
   std::vector<int> lengths(size_), displacements(size_);
-  check(MPI_Gather(&length, 1, MPI_INT, lengths.data(), 1, MPI_INT, 0, comm_), "MPI_Gather");
+  checkMpi(MPI_Gather(&length, 1, MPI_INT, lengths.data(), 1, MPI_INT, 0, comm_), "MPI_Gather");
   int total = 0;
   for (int r = 0; r < size_; ++r) displacements[r] = total, total += lengths[r];
   std::string all(rank_ == 0 ? total : 0, '\0');
-  check(MPI_Gatherv(text.data(), length, MPI_CHAR, all.data(), lengths.data(),
+  checkMpi(MPI_Gatherv(text.data(), length, MPI_CHAR, all.data(), lengths.data(),
                     displacements.data(), MPI_CHAR, 0, comm_),
         "MPI_Gatherv");
   nlohmann::json out = nlohmann::json::array();
@@ -248,12 +241,12 @@ void MpiDistribution::agree(const std::exception_ptr& failure) {
     }
   }
   int first = failure ? rank_ : size_;
-  check(MPI_Allreduce(MPI_IN_PLACE, &first, 1, MPI_INT, MPI_MIN, comm_), "MPI_Allreduce");
+  checkMpi(MPI_Allreduce(MPI_IN_PLACE, &first, 1, MPI_INT, MPI_MIN, comm_), "MPI_Allreduce");
   if (first == size_) return;
   int length = static_cast<int>(message.size());
-  check(MPI_Bcast(&length, 1, MPI_INT, first, comm_), "MPI_Bcast");
+  checkMpi(MPI_Bcast(&length, 1, MPI_INT, first, comm_), "MPI_Bcast");
   message.resize(length);
-  check(MPI_Bcast(message.data(), length, MPI_CHAR, first, comm_), "MPI_Bcast");
+  checkMpi(MPI_Bcast(message.data(), length, MPI_CHAR, first, comm_), "MPI_Bcast");
   throw AgreedFailure(fmt::format("rank {} of {}: {}", first, size_, message));
 }
 

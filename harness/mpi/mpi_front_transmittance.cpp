@@ -4,14 +4,11 @@
 
 #include <algorithm>
 
+#include "harness/mpi/mpi_check.h"
 #include "spectral/error.h"
 
 namespace svr {
 namespace {
-
-void check(int code, const char* what) {
-  if (code != MPI_SUCCESS) throw Error(fmt::format("MPI: {} failed (code {})", what, code));
-}
 
 double msSince(std::chrono::steady_clock::time_point t0) {
   return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
@@ -25,7 +22,7 @@ MpiFrontTransmittance::MpiFrontTransmittance(MPI_Comm comm, const std::vector<Kd
                                              const Camera& camera, int width, int height,
                                              int t_channels) {
   // Its own communicator: block numbers are the tags, apart from every other message.
-  check(MPI_Comm_dup(comm, &comm_), "MPI_Comm_dup");
+  checkMpi(MPI_Comm_dup(comm, &comm_), "MPI_Comm_dup");
   int rank = 0;
   MPI_Comm_rank(comm_, &rank);
   const int ranks = static_cast<int>(bricks.size());
@@ -63,7 +60,7 @@ MpiFrontTransmittance::MpiFrontTransmittance(MPI_Comm comm, const std::vector<Kd
     in.buffers.assign(in_front[b].size(), std::vector<float>(planes_size_));
     for (std::size_t i = 0; i < in_front[b].size(); ++i) {
       MPI_Request request;
-      check(MPI_Irecv(in.buffers[i].data(), planes_size_, MPI_FLOAT, in_front[b][i], b, comm_,
+      checkMpi(MPI_Irecv(in.buffers[i].data(), planes_size_, MPI_FLOAT, in_front[b][i], b, comm_,
                       &request),
             "MPI_Irecv");
       requests_.push_back(request);
@@ -84,7 +81,7 @@ MpiFrontTransmittance::~MpiFrontTransmittance() {
 bool MpiFrontTransmittance::arrived(int block) {
   const Incoming& in = incoming_[block];
   int flag = 0;
-  check(MPI_Testall(static_cast<int>(in.buffers.size()), requests_.data() + in.first, &flag,
+  checkMpi(MPI_Testall(static_cast<int>(in.buffers.size()), requests_.data() + in.first, &flag,
                     MPI_STATUSES_IGNORE),
         "MPI_Testall");
   return flag != 0;
@@ -106,7 +103,7 @@ int MpiFrontTransmittance::next() {
     // Every block left waits on the bricks in front: until any of their T comes.
     const auto t0 = std::chrono::steady_clock::now();
     int index = 0;
-    check(MPI_Waitany(static_cast<int>(requests_.size()), requests_.data(), &index,
+    checkMpi(MPI_Waitany(static_cast<int>(requests_.size()), requests_.data(), &index,
                       MPI_STATUS_IGNORE),
           "MPI_Waitany");
     waited_ms_ += msSince(t0);
@@ -130,13 +127,13 @@ void MpiFrontTransmittance::send(int block, std::vector<float> transmittance) {
   const std::vector<float>& data = outgoing_.emplace_back(std::move(transmittance));
   for (const int r : behind_[block]) {
     MPI_Request request;
-    check(MPI_Isend(data.data(), planes_size_, MPI_FLOAT, r, block, comm_, &request),
+    checkMpi(MPI_Isend(data.data(), planes_size_, MPI_FLOAT, r, block, comm_, &request),
           "MPI_Isend");
     sends_.push_back(request);
   }
   // Lets the transfers move on while this rank renders (MPI progresses inside its calls).
   int flag = 0;
-  check(MPI_Testall(static_cast<int>(sends_.size()), sends_.data(), &flag, MPI_STATUSES_IGNORE),
+  checkMpi(MPI_Testall(static_cast<int>(sends_.size()), sends_.data(), &flag, MPI_STATUSES_IGNORE),
         "MPI_Testall");
 }
 
@@ -150,9 +147,9 @@ void MpiFrontTransmittance::finished(int block, const LightIndependentImage& ima
 }
 
 void MpiFrontTransmittance::waitForAll() {
-  check(MPI_Waitall(static_cast<int>(requests_.size()), requests_.data(), MPI_STATUSES_IGNORE),
+  checkMpi(MPI_Waitall(static_cast<int>(requests_.size()), requests_.data(), MPI_STATUSES_IGNORE),
         "MPI_Waitall");
-  check(MPI_Waitall(static_cast<int>(sends_.size()), sends_.data(), MPI_STATUSES_IGNORE),
+  checkMpi(MPI_Waitall(static_cast<int>(sends_.size()), sends_.data(), MPI_STATUSES_IGNORE),
         "MPI_Waitall");
   sends_.clear();
   outgoing_.clear();

@@ -90,14 +90,14 @@ void traceTiles(const raycast::TileJob& job, raycast::TileFn fn, ProgressCounter
 }
 
 // A brick with bricks in front: the blocks as the exchange gives them, each with the
-// transmittance in front of it, passed on once done. The threads share a block at a time, so the calls into
-// the exchange (MPI in svr-mpi) stay on this thread.
+// transmittance in front of it, passed on once done. The threads share a block at a time, so
+// the calls into the exchange (MPI in svr-mpi) stay on this thread.
 void traceBlocks(const raycast::TileJob& job, raycast::TileFn fn, FrontTransmittance& exchange,
                  ProgressCounter& progress) {
   constexpr int n = FrontTransmittance::kBlock;
   const int blocks_x = FrontTransmittance::blocksAcross(job.x1);
   progress.stage(static_cast<long>(exchange.blocks()) * (n / kTile) * (n / kTile));
-  // Blocks out of the order hold none of the brick's samples: S = 0, T = 1 there.
+  // Blocks the exchange never gives hold none of the brick's samples: S = 0, T = 1 there.
   LightIndependentImage& image = *job.image;
   for (int c = 0; c < image.transmittanceChannels(); ++c) {
     const auto plane = image.planeFloat(image.channels() + c);
