@@ -33,15 +33,20 @@ std::vector<int> footprintBlocks(const VoxelBox& own, const Dims& whole,
       }
       u /= depth, v /= depth;
     }
-    // Inverse of RayGenerator::ray: u = (2px/width − 1)·halfWidth, v = (1 − 2py/height)·halfHeight.
+    // Inverse of RayGenerator::ray: u = (2px/width − 1)·halfWidth,
+    // v = (1 − 2py/height)·halfHeight.
     const double px = 0.5 * width * (u / rays.halfWidth() + 1.0);
     const double py = 0.5 * height * (1.0 - v / rays.halfHeight());
     x_lo = std::min(x_lo, px), x_hi = std::max(x_hi, px);
     y_lo = std::min(y_lo, py), y_hi = std::max(y_hi, py);
   }
   std::vector<int> blocks;
-  const auto first = [](double p) { return static_cast<int>(std::floor((p - 1.0) / FrontTransmittance::kBlock)); };
-  const auto last = [](double p) { return static_cast<int>(std::floor((p + 1.0) / FrontTransmittance::kBlock)); };
+  // The blocks of the rectangle a pixel wider on each side.
+  const auto blockOf = [](double p) {
+    return static_cast<int>(std::floor(p / FrontTransmittance::kBlock));
+  };
+  const auto first = [&](double p) { return blockOf(p - 1.0); };
+  const auto last = [&](double p) { return blockOf(p + 1.0); };
   const int x0 = everywhere ? 0 : std::max(first(x_lo), 0);
   const int x1 = everywhere ? bx - 1 : std::min(last(x_hi), bx - 1);
   const int y0 = everywhere ? 0 : std::max(first(y_lo), 0);
