@@ -95,7 +95,7 @@ void writeReferenceImages(const ComparisonSession& session, const std::string& o
   if (scene.background) post.setBackground(session.referenceModel().project(*scene.background));
   for (const auto& ill : session.illuminations()) {
     std::vector<std::uint8_t> rgb(3 * session.reference().pixels());
-    post.setLight(session.referenceModel().project(ill.spectrum));
+    post.setLight(ill.spectrum);
     post.relightSrgb8(session.reference(), rgb);
     writeSrgbPng(rgb, scene.width, scene.height,
                  (fs::path(out_dir) / "images" / "reference" / (slug(ill.name) + ".png")).string());

@@ -20,11 +20,12 @@ double msSince(std::chrono::steady_clock::time_point t0) {
   return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
 }
 
-// Luminance-weighted transmittance per pixel under a light: Y of (l ⊙ T) over Y of l.
+// Luminance-weighted transmittance per pixel under a light: Y of (L ⊙ T) over Y of L, through
+// the model's light matrix (Y of each channel under the light).
 std::vector<float> luminanceTransmittance(const LightIndependentImage& image,
-                                          const ColourModel& model, const Eigen::VectorXd& light) {
+                                          const ColourModel& model, const Spectrum& light) {
   const int k = model.channels(), nt = image.transmittanceChannels();
-  Eigen::VectorXd weight = model.toXyz().row(1).transpose().cwiseProduct(light);
+  Eigen::VectorXd weight = model.lightMatrix(light).row(1).transpose();
   weight /= weight.sum();
   std::vector<float> out(image.pixels(), 1.0f);
   for (int y = 0; y < image.height(); ++y)
@@ -146,20 +147,19 @@ RunResult ComparisonSession::run(const RunSpec& spec) {
   PostIlluminator post(model);
   if (scene_.background) post.setBackground(model.project(*scene_.background));
   const auto ref_light_t = [&](const Spectrum& l) {
-    return luminanceTransmittance(reference_, *reference_model_, reference_model_->project(l));
+    return luminanceTransmittance(reference_, *reference_model_, l);
   };
   double relight_total = 0.0;
   for (const auto& ill : illuminations_) {
     LightResult lr;
     lr.light = ill.name;
     const Xyz white = observer_.xyz(ill.spectrum);
-    const Eigen::VectorXd coeffs = model.project(ill.spectrum);
     lr.relit.resize(3 * r.image.pixels());
     // Best of a few: a relight is short enough that one sample mostly measures thread wake-up.
     double best = INFINITY;
     for (int repeat = 0; repeat < 5; ++repeat) {
       const auto t0 = std::chrono::steady_clock::now();
-      post.setLight(coeffs);
+      post.setLight(ill.spectrum);
       post.relightSrgb8(r.image, lr.relit);
       best = std::min(best, msSince(t0));
     }
@@ -172,7 +172,7 @@ RunResult ComparisonSession::run(const RunSpec& spec) {
       lr.vs_raycast =
           compareRelit(r.image, model, raycast->image, *raycast->chosen.model, ill.spectrum, white)
               .stats;
-    const auto t_run = luminanceTransmittance(r.image, model, coeffs);
+    const auto t_run = luminanceTransmittance(r.image, model, ill.spectrum);
     const auto t_ref = ref_light_t(ill.spectrum);
     double sum = 0.0;
     std::size_t n = 0;

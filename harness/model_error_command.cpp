@@ -37,6 +37,7 @@ std::string label(const ColourModel& m) {
 nlohmann::json statsJson(const ModelErrorRow& r) {
   auto num = [&](double v) { return r.stats.finite ? nlohmann::json(v) : nlohmann::json(); };
   return {{"model", r.model},        {"k", r.k},           {"variant", r.variant},
+          {"light_matrix", r.light_matrix},
           {"set", r.set},            {"case", r.evaluation_case},
           {"mean", num(r.stats.mean)}, {"p95", num(r.stats.p95)}, {"max", num(r.stats.max)},
           {"finite", r.stats.finite}};
@@ -50,8 +51,7 @@ void printTable(const std::string& set, const std::vector<ModelErrorRow>& rows,
   std::map<std::string, std::map<std::string, const ModelErrorRow*>> by_model;
   for (const auto& r : rows)
     if (r.set == set)
-      by_model[(r.model == "rgb" ? r.model : fmt::format("{}:{}", r.model, r.k)) +
-               (r.variant.empty() ? "" : " " + r.variant)]
+      by_model[r.name + (r.variant.empty() ? "" : " " + r.variant)]
               [r.evaluation_case] = &r;
   auto cell = [](const ModelErrorRow* r, double ErrorStats::*field) {
     if (!r) return std::string("-");
@@ -71,25 +71,30 @@ void printTable(const std::string& set, const std::vector<ModelErrorRow>& rows,
   }
 }
 
-// Smallest k of the refined factor model whose product and absorb256 means are within target.
+// Smallest k of the refined factor model whose product and absorb256 means are within target,
+// for each light matrix.
 void printSmallestK(const std::string& set, const std::vector<ModelErrorRow>& rows) {
-  for (double target : {1.0, 0.3}) {
-    int best = -1;
-    std::map<int, double> worst;
-    for (const auto& r : rows)
-      if (r.set == set && r.model == "factor" && r.variant == "refined" &&
-          (r.evaluation_case == "product" || r.evaluation_case == "absorb256"))
-        worst[r.k] = std::max(worst[r.k], r.stats.finite ? r.stats.mean : INFINITY);
-    for (auto& [k, v] : worst)
-      if (v <= target) {
-        best = k;
-        break;
-      }
-    if (best > 0)
-      fmt::print("set {}: smallest factor k with mean ΔE2000 ≤ {} (single and deep): {}\n", set,
-                 target, best);
-    else
-      fmt::print("set {}: no factor k in range reaches mean ΔE2000 ≤ {}\n", set, target);
+  for (const char* matrix : {"full", "projected"}) {
+    for (double target : {1.0, 0.3}) {
+      int best = -1;
+      std::map<int, double> worst;
+      for (const auto& r : rows)
+        if (r.set == set && r.model == "factor" && r.variant == "refined" &&
+            r.light_matrix == matrix &&
+            (r.evaluation_case == "product" || r.evaluation_case == "absorb256"))
+          worst[r.k] = std::max(worst[r.k], r.stats.finite ? r.stats.mean : INFINITY);
+      for (auto& [k, v] : worst)
+        if (v <= target) {
+          best = k;
+          break;
+        }
+      if (best > 0)
+        fmt::print("set {}: smallest factor k with mean ΔE2000 ≤ {} (single and deep), {} light "
+                   "matrices: {}\n", set, target, matrix, best);
+      else
+        fmt::print("set {}: no factor k in range reaches mean ΔE2000 ≤ {}, {} light matrices\n",
+                   set, target, matrix);
+    }
   }
 }
 
@@ -134,7 +139,8 @@ int runModelError(const ModelErrorOptions& o) {
 
   std::vector<ModelEntry> models;
   const int nk = o.k_max - o.k_min + 1;
-  Progress progress("training", nk * (o.contrast ? 4 : 3) + 2, o.quiet);
+  const LightMatrixKind matrices[] = {LightMatrixKind::kFull, LightMatrixKind::kProjected};
+  Progress progress("training", nk * (o.contrast ? 7 : 5) + 2, o.quiet);
   auto timed = [&](auto&& make) {
     const auto t0 = std::chrono::steady_clock::now();
     ModelEntry e = make();
@@ -146,21 +152,26 @@ int runModelError(const ModelErrorOptions& o) {
   };
   models.push_back(timed([&] { return ModelEntry{makeRgbModel(observer), {}, {}, 0.0}; }));
   models.push_back(timed([&] { return ModelEntry{makeSpectralModel(observer, grid.count), {}, {}, 0.0}; }));
-  for (int k = o.k_min; k <= o.k_max; ++k)
-    models.push_back(timed([&] { return ModelEntry{makeSpectralModel(observer, k), {}, {}, 0.0}; }));
+  // Both light matrices of every model with a spectral basis (issue 19: charted side by side).
+  for (auto matrix : matrices)
+    for (int k = o.k_min; k <= o.k_max; ++k)
+      models.push_back(timed([&] {
+        return ModelEntry{makeSpectralModel(observer, k, matrix), {}, {}, 0.0};
+      }));
   for (int k = o.k_min; k <= o.k_max; ++k)
     models.push_back(timed([&] { return ModelEntry{trainLinearModel(observer, training, k), {}, {}, 0.0}; }));
   // Unsharpened PCA is always shown as the contrast sharpening must beat; closed-form
   // sharpening only on request (it is unstable: finite at some k, not at others).
   std::vector<FactorVariant> variants{FactorVariant::kPca, FactorVariant::kRefined};
   if (o.contrast) variants.insert(variants.begin() + 1, FactorVariant::kSharp);
-  for (auto variant : variants)
-    for (int k = o.k_min; k <= o.k_max; ++k)
-      models.push_back(timed([&] {
-        ModelEntry e;
-        e.model = trainFactorModel(observer, training, k, variant, &e.training);
-        return e;
-      }));
+  for (auto matrix : matrices)
+    for (auto variant : variants)
+      for (int k = o.k_min; k <= o.k_max; ++k)
+        models.push_back(timed([&] {
+          ModelEntry e;
+          e.model = trainFactorModel(observer, training, k, variant, matrix, &e.training);
+          return e;
+        }));
 
   std::vector<ModelErrorRow> rows;
   {

@@ -41,12 +41,12 @@ int runRelight(const RelightOptions& o) {
   const WavelengthGrid grid = model->grid();
   const auto library = SpectrumLibrary::load(o.data_dir, grid);
   const auto observer = Observer::cie1931(o.data_dir, grid);
-  auto coeffs = [&](const std::string& name) {
-    return model->project(observer.unitLuminance(library.get(name)));
+  auto unitLight = [&](const std::string& name) {
+    return observer.unitLuminance(library.get(name)).values();
   };
   Eigen::VectorXd light;
   if (!o.light.empty()) {
-    light = coeffs(o.light);
+    light = unitLight(o.light);
   } else {
     std::vector<Eigen::VectorXd> lights;
     std::vector<double> weights;
@@ -68,13 +68,13 @@ int runRelight(const RelightOptions& o) {
       if (!std::isfinite(w) || w < 0)
         throw Error(fmt::format("relight: --mix weight {} of '{}' must be ≥ 0", w,
                                 item.substr(0, colon)));
-      lights.push_back(coeffs(item.substr(0, colon)));
+      lights.push_back(unitLight(item.substr(0, colon)));
       weights.push_back(w);
     }
     light = mixLights(lights, weights);
   }
   PostIlluminator post(*model);
-  post.setLight(light, o.exposure);
+  post.setLight(Spectrum(grid, light), o.exposure);
   if (!o.background.empty()) post.setBackground(model->project(library.get(o.background)));
   std::vector<std::uint8_t> rgb(3 * image.pixels());
   if (device) {

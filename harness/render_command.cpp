@@ -52,27 +52,31 @@ std::string fileStem(const std::string& name) {
   return out.empty() ? "light" : out;
 }
 
-// One relit output: a scene light or a mix of them, in the model's coefficients.
+// One relit output: a scene light or a mix of them, as a spectrum at unit luminance (a mix:
+// the weighted sum of its lights').
 struct RelitOutput {
   std::string name, file;
-  Eigen::VectorXd light;
+  Spectrum light;
   std::vector<std::uint8_t> rgb;
 };
 
-std::vector<RelitOutput> sceneOutputs(const Scene& scene, const ColourModel& model,
-                                      const Observer& observer) {
-  std::vector<Eigen::VectorXd> coeffs;
-  for (const auto& l : scene.lights)
-    coeffs.push_back(model.project(observer.unitLuminance(l.spectrum)));
+// Σ w · light over a mix's (light index, weight) pairs: light matrices are linear in the light.
+Spectrum mixSpectra(const std::vector<Spectrum>& lights,
+                    const std::vector<std::pair<int, double>>& weights) {
+  Spectrum mix = Spectrum::constant(lights.front().grid(), 0.0);
+  for (const auto& [index, w] : weights) mix = mix + lights[index] * w;
+  return mix;
+}
+
+std::vector<RelitOutput> sceneOutputs(const Scene& scene, const Observer& observer) {
+  std::vector<Spectrum> unit;
+  for (const auto& l : scene.lights) unit.push_back(observer.unitLuminance(l.spectrum));
   std::vector<RelitOutput> outputs;
   for (size_t i = 0; i < scene.lights.size(); ++i)
-    outputs.push_back({scene.lights[i].name, fileStem(scene.lights[i].name) + ".png", coeffs[i], {}});
-  for (const auto& mix : scene.mixes) {
-    std::vector<Eigen::VectorXd> ls;
-    std::vector<double> ws;
-    for (const auto& [index, w] : mix.weights) ls.push_back(coeffs[index]), ws.push_back(w);
-    outputs.push_back({mix.name, "mix_" + fileStem(mix.name) + ".png", mixLights(ls, ws), {}});
-  }
+    outputs.push_back({scene.lights[i].name, fileStem(scene.lights[i].name) + ".png", unit[i], {}});
+  for (const auto& mix : scene.mixes)
+    outputs.push_back({mix.name, "mix_" + fileStem(mix.name) + ".png",
+                       mixSpectra(unit, mix.weights), {}});
   return outputs;
 }
 
@@ -217,7 +221,7 @@ void writeRenderOutputs(const RenderOptions& o, const Scene& scene, const Render
   const auto t_relight = clock::now();
   PostIlluminator post(model);
   if (scene.background) post.setBackground(model.project(*scene.background));
-  std::vector<RelitOutput> outputs = sceneOutputs(scene, model, observer);
+  std::vector<RelitOutput> outputs = sceneOutputs(scene, observer);
   for (auto& out : outputs) {
     out.rgb.resize(3 * image.pixels());
     post.setLight(out.light);

@@ -24,11 +24,18 @@ std::string toString(ModelKind kind) {
   return "?";
 }
 
-std::string ModelName::str() const {
-  return kind == ModelKind::kRgb ? "rgb" : fmt::format("{}:{}", toString(kind), k);
+std::string toString(LightMatrixKind kind) {
+  return kind == LightMatrixKind::kFull ? "full" : "projected";
 }
 
-ModelName parseModelName(const std::string& text) {
+std::string ModelName::str() const {
+  const std::string base = kind == ModelKind::kRgb ? "rgb" : fmt::format("{}:{}", toString(kind), k);
+  return light_matrix == defaultLightMatrix(kind) ? base : base + "/" + toString(light_matrix);
+}
+
+namespace {
+
+ModelName parseBaseName(const std::string& text) {
   if (text == "rgb") return {ModelKind::kRgb, 3};
   const auto colon = text.find(':');
   const std::string head = text.substr(0, colon);
@@ -55,6 +62,28 @@ ModelName parseModelName(const std::string& text) {
     throw Error(fmt::format("colour model '{}': channel count {} is outside {}..{}", text, k, lo,
                             hi));
   return {kind, k};
+}
+
+}  // namespace
+
+ModelName parseModelName(const std::string& text) {
+  const auto slash = text.find('/');
+  ModelName name = parseBaseName(text.substr(0, slash));
+  if (slash == std::string::npos) return name;
+  const std::string matrix = text.substr(slash + 1);
+  if (matrix == "projected") {
+    name.light_matrix = LightMatrixKind::kProjected;
+  } else if (matrix == "full") {
+    if (name.kind == ModelKind::kRgb || name.kind == ModelKind::kLinear)
+      throw Error(fmt::format("colour model '{}': {} has no spectral basis for full-spectrum "
+                              "light matrices; it relights projected only",
+                              text, toString(name.kind)));
+    name.light_matrix = LightMatrixKind::kFull;
+  } else {
+    throw Error(fmt::format("colour model '{}': light matrix '{}' is not 'full' or 'projected'",
+                            text, matrix));
+  }
+  return name;
 }
 
 namespace {
@@ -92,13 +121,20 @@ nlohmann::json matrixToJson(const Eigen::MatrixXd& m) {
 nlohmann::json ColourModel::jsonHead() const {
   return {{"model", name()},
           {"variant", variant()},
+          {"light_matrix", toString(light_matrix_)},
           {"grid", {{"start_nm", grid_.start_nm}, {"step_nm", grid_.step_nm}, {"count", grid_.count}}},
           {"to_xyz", matrixToJson(to_xyz_)}};
 }
 
 std::unique_ptr<ColourModel> modelFromJson(const nlohmann::json& j, const std::string& source) {
   try {
-    const ModelName name = parseModelName(j.at("model").get<std::string>());
+    ModelName name = parseModelName(j.at("model").get<std::string>());
+    // Files written before full-spectrum light matrices existed name no light matrix and were
+    // all projected.
+    const std::string matrix = j.value("light_matrix", "projected");
+    if (matrix != "full" && matrix != "projected")
+      throw Error(fmt::format("{}: light_matrix '{}' is not 'full' or 'projected'", source, matrix));
+    name.light_matrix = matrix == "full" ? LightMatrixKind::kFull : LightMatrixKind::kProjected;
     const auto& g = j.at("grid");
     WavelengthGrid grid{g.at("start_nm").get<double>(), g.at("step_nm").get<double>(),
                         g.at("count").get<int>()};
@@ -120,8 +156,15 @@ std::unique_ptr<ColourModel> modelFromJson(const nlohmann::json& j, const std::s
     if (projection.rows() != name.k || projection.cols() != grid.count)
       throw Error(fmt::format("{}: projection is {}×{}, expected {}×{}", source, projection.rows(),
                               projection.cols(), name.k, grid.count));
+    XyzMatrix spectrum_to_xyz;
+    if (name.light_matrix == LightMatrixKind::kFull) {
+      spectrum_to_xyz = matrixFromJson(j.at("spectrum_to_xyz"), source + ": spectrum_to_xyz");
+      if (spectrum_to_xyz.rows() != 3 || spectrum_to_xyz.cols() != grid.count)
+        throw Error(fmt::format("{}: spectrum_to_xyz is {}×{}, expected 3×{}", source,
+                                spectrum_to_xyz.rows(), spectrum_to_xyz.cols(), grid.count));
+    }
     return std::make_unique<ComponentwiseModel>(name.kind, variant, grid, projection, to_xyz,
-                                                basis);
+                                                basis, name.light_matrix, spectrum_to_xyz);
   } catch (const nlohmann::json::exception& e) {
     throw Error(fmt::format("{}: not a colour model: {}", source, e.what()));
   }

@@ -17,11 +17,30 @@ enum class ModelKind { kRgb, kSpectral, kFactor, kLinear };
 
 std::string toString(ModelKind kind);
 
-// "factor:6" → {kFactor, 6}; "rgb" → {kRgb, 3}. Throws svr::Error naming the text.
+// How a light becomes the 3×k matrix that relights a light-independent pixel (issue 19):
+//   kProjected  toXyz · diag(P·L): the light is projected like any spectrum and its product
+//               with the pixel is taken componentwise in the model (the paper's method; the
+//               only one rgb has, having no basis);
+//   kFull       CMF · diag(L) · B with the grid's weights: the pixel's spectrum B·c times the
+//               light's full spectrum. The last product is exact, the cost per frame the same,
+//               and it is still linear in L, so mixes of lights mix their matrices.
+// A model is trained for one of them (factor_training.h), so the choice is part of its name.
+enum class LightMatrixKind { kProjected, kFull };
+std::string toString(LightMatrixKind kind);
+
+// "factor:6" → {kFactor, 6, kFull}; "factor:6/projected" → {kFactor, 6, kProjected}; "rgb" →
+// {kRgb, 3, kProjected}. The light matrix defaults to full for the models with a spectral basis
+// (factor, spectral) and is projected for rgb and linear, which have no other. Throws
+// svr::Error naming the text.
 struct ModelName {
   ModelKind kind;
   int k;
+  LightMatrixKind light_matrix = defaultLightMatrix(kind);
   std::string str() const;
+  static LightMatrixKind defaultLightMatrix(ModelKind kind) {
+    return kind == ModelKind::kFactor || kind == ModelKind::kSpectral ? LightMatrixKind::kFull
+                                                                      : LightMatrixKind::kProjected;
+  }
 };
 ModelName parseModelName(const std::string& text);
 
@@ -33,7 +52,8 @@ class ColourModel {
 
   ModelKind kind() const { return kind_; }
   int channels() const { return static_cast<int>(white_.size()); }
-  std::string name() const { return ModelName{kind_, channels()}.str(); }
+  std::string name() const { return ModelName{kind_, channels(), light_matrix_}.str(); }
+  LightMatrixKind lightMatrixKind() const { return light_matrix_; }
   // How the basis was made, e.g. "refined" or "pca" for factor models; "" where there is one way.
   const std::string& variant() const { return variant_; }
   const WavelengthGrid& grid() const { return grid_; }
@@ -53,8 +73,9 @@ class ColourModel {
   // componentwise; k² for linear:k (the scattered radiance is a k×k matrix applied to the light).
   virtual int imageChannels() const { return channels(); }
   // The 3 × imageChannels() matrix that takes a light-independent pixel to XYZ under the light
-  // whose coefficients are given: toXyz · diag(light) when componentwise.
-  virtual Eigen::MatrixXd lightMatrix(const Eigen::VectorXd& light) const = 0;
+  // spectrum L, as lightMatrixKind() says: toXyz · diag(P·L) when componentwise and projected,
+  // CMF · diag(L) · B when full. Linear in L.
+  virtual Eigen::MatrixXd lightMatrix(const Spectrum& light) const = 0;
 
   // Each model writes itself in its own file (componentwise_model.cpp, linear_model.cpp), on
   // jsonHead(): name, variant, grid and to_xyz; modelFromJson reads any of them back.
@@ -66,6 +87,7 @@ class ColourModel {
       : kind_(kind), variant_(std::move(variant)), grid_(grid) {}
 
   ModelKind kind_;
+  LightMatrixKind light_matrix_ = LightMatrixKind::kProjected;
   std::string variant_;
   WavelengthGrid grid_;
   Eigen::VectorXd white_;

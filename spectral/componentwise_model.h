@@ -11,14 +11,17 @@ namespace svr {
 class ComponentwiseModel final : public ColourModel {
  public:
   // basis: n×k spectra the coefficients weigh (for reconstruction and for the record; may be
-  // empty for rgb, which has no spectral basis).
+  // empty for rgb, which has no spectral basis). Full-spectrum light matrices need the basis
+  // and spectrum_to_xyz, the observer's weighted colour-matching functions (3×n).
   ComponentwiseModel(ModelKind kind, std::string variant, WavelengthGrid grid,
-                     Eigen::MatrixXd projection, XyzMatrix to_xyz, Eigen::MatrixXd basis);
+                     Eigen::MatrixXd projection, XyzMatrix to_xyz, Eigen::MatrixXd basis,
+                     LightMatrixKind light_matrix = LightMatrixKind::kProjected,
+                     XyzMatrix spectrum_to_xyz = XyzMatrix());
 
   bool componentwise() const override { return true; }
   Eigen::VectorXd project(const Spectrum& s) const override;
   Eigen::MatrixXd interaction(const Spectrum& s) const override;
-  Eigen::MatrixXd lightMatrix(const Eigen::VectorXd& light) const override;
+  Eigen::MatrixXd lightMatrix(const Spectrum& light) const override;
   nlohmann::json toJson() const override;
 
   const Eigen::MatrixXd& projection() const { return projection_; }
@@ -27,11 +30,14 @@ class ComponentwiseModel final : public ColourModel {
  private:
   Eigen::MatrixXd projection_;  // k×n
   Eigen::MatrixXd basis_;       // n×k, or empty
+  XyzMatrix spectrum_to_xyz_;   // 3×n, full light matrices only
 };
 
 // Linear sRGB of the spectrum (reflectance under E), scaled so flat white is (1, 1, 1).
 std::unique_ptr<ComponentwiseModel> makeRgbModel(const Observer& observer);
 // n contiguous equal bands of the grid, band means; n = grid size is exact up to sampling.
-std::unique_ptr<ComponentwiseModel> makeSpectralModel(const Observer& observer, int n);
+// With full light matrices a band's light is its full spectrum, not its band mean.
+std::unique_ptr<ComponentwiseModel> makeSpectralModel(
+    const Observer& observer, int n, LightMatrixKind light_matrix = LightMatrixKind::kFull);
 
 }  // namespace svr

@@ -91,19 +91,21 @@ Eigen::MatrixXd sharpeningTransform(const Eigen::MatrixXd& b0, const std::vector
   return t;
 }
 
-// The product error of the white-normalised model B = B0·T·diag(w) over the training set:
-// CIELAB differences (against each light's own white, deep products exposure-normalised), so
-// the least-squares objective weighs errors as ΔE does; plus a hinge on coefficients outside
-// [kCoeffLo, kCoeffHi]. Lab residuals measured better than XYZ ones on the held-out Munsell
-// set (k = 9: 0.56 / 0.87 against 0.64 / 0.99 single / deep).
+// The product error of the white-normalised model B = B0·T·diag(w), P = diag(w)⁻¹·T⁻¹·P0 over
+// the training set: CIELAB differences (against each light's own white, deep products
+// exposure-normalised), so the least-squares objective weighs errors as ΔE does; plus a hinge
+// on coefficients outside [kCoeffLo, kCoeffHi]. Lab residuals measured better than XYZ ones on
+// the held-out Munsell set (k = 9: 0.56 / 0.87 against 0.64 / 0.99 single / deep). Projected
+// light matrices predict toXyz · (P·L ⊙ P·R ⊙ (P·t)^m); full ones C · diag(L) · B · (P·R ⊙ (P·t)^m).
 class ProductObjective {
  public:
   static constexpr int kMaxSamples = 1000;  // refinement uses an evenly spaced subset
   static constexpr double kCoeffLo = -1.0, kCoeffHi = 3.0;  // bounds on reflectance coefficients
   static constexpr double kBoundWeight = 1.0;
 
-  ProductObjective(const Observer& observer, const TrainingSet& set, const Eigen::MatrixXd& b0)
-      : k_(static_cast<int>(b0.cols())), depths_(set.depths) {
+  ProductObjective(const Observer& observer, const TrainingSet& set, const Eigen::MatrixXd& b0,
+                   const Eigen::MatrixXd& p0, LightMatrixKind light_matrix)
+      : k_(static_cast<int>(b0.cols())), depths_(set.depths), light_matrix_(light_matrix) {
     const int n_all = static_cast<int>(set.reflectances.size());
     const int n = std::min(n_all, kMaxSamples);
     const int nl = static_cast<int>(set.lights.size());
@@ -118,11 +120,13 @@ class ProductObjective {
     }
     if (set.absorbers.empty()) depths_.clear();
     const auto& cmf = observer.weightedCmf();
-    al_ = b0.transpose() * lights;
-    ar_ = b0.transpose() * refl;
-    at_ = b0.transpose() * absorb;
-    a1_ = b0.transpose() * Eigen::VectorXd::Ones(n_grid);
+    al_ = p0 * lights;
+    ar_ = p0 * refl;
+    at_ = p0 * absorb;
+    a1_ = p0 * Eigen::VectorXd::Ones(n_grid);
     cb_ = cmf.transpose() * b0;
+    for (int l = 0; l < nl; ++l)
+      cb_light_.push_back(cmf.transpose() * lights.col(l).asDiagonal() * b0);
     const int cases = 1 + static_cast<int>(depths_.size());
     whites_ = cmf.transpose() * lights;  // Y = 1 for unit-luminance lights
     exact_.resize(3, nl * n * cases);
@@ -164,6 +168,10 @@ class ProductObjective {
     const Eigen::MatrixXd cr = inv_w.asDiagonal() * lu.solve(ar_);
     const Eigen::MatrixXd ct = inv_w.asDiagonal() * lu.solve(at_);
     const Eigen::MatrixXd m = cb_ * t * w.asDiagonal();
+    const bool full = light_matrix_ == LightMatrixKind::kFull;
+    std::vector<Eigen::MatrixXd> m_light;  // full: C · diag(L) · B per light
+    if (full)
+      for (const auto& cbl : cb_light_) m_light.push_back(cbl * t * w.asDiagonal());
     Eigen::VectorXd r(residuals());
     int row = 0;
     const int cases = 1 + static_cast<int>(depths_.size());
@@ -171,7 +179,9 @@ class ProductObjective {
       const Eigen::MatrixXd filt =
           c == 0 ? cr : Eigen::MatrixXd(cr.cwiseProduct(ct.array().pow(depths_[c - 1]).matrix()));
       for (int l = 0; l < nl_; ++l) {
-        const Eigen::MatrixXd pred = m * (cl.col(l).asDiagonal() * filt);  // 3×n
+        const Eigen::MatrixXd pred =
+            full ? Eigen::MatrixXd(m_light[l] * filt)
+                 : Eigen::MatrixXd(m * (cl.col(l).asDiagonal() * filt));  // 3×n
         for (int j = 0; j < n_; ++j) {
           const int idx = (c * nl_ + l) * n_ + j;
           const Xyz xyz = pred.col(j) * scale_[idx];
@@ -199,7 +209,9 @@ class ProductObjective {
  private:
   int k_, nl_ = 0, n_ = 0;
   std::vector<int> depths_;
+  LightMatrixKind light_matrix_;
   Eigen::MatrixXd al_, ar_, at_, cb_, exact_, whites_;
+  std::vector<Eigen::MatrixXd> cb_light_;
   Eigen::VectorXd a1_, scale_;
 };
 
@@ -303,19 +315,27 @@ std::vector<int> searchBorders(const ProductObjective& objective, const Eigen::M
   return borders;
 }
 
+// The model B = B0·T·diag(w), P = diag(w)⁻¹·T⁻¹·P0, w = T⁻¹·P0·1 (flat white → all ones);
+// `normalise` false keeps B0 and P0 as they are (the unsharpened PCA contrast).
 std::unique_ptr<ComponentwiseModel> modelFromTransform(const Observer& observer,
-                                                       const Eigen::MatrixXd& b0,
+                                                       const StartingSpan& span,
                                                        const Eigen::MatrixXd& t,
-                                                       FactorVariant variant, double* white_min) {
-  Eigen::MatrixXd basis = b0 * t;
-  Eigen::MatrixXd projection = t.partialPivLu().solve(b0.transpose());  // = B⁺ (B0 orthonormal)
-  const Eigen::VectorXd w = projection.rowwise().sum();
-  if (white_min) *white_min = w.cwiseAbs().minCoeff();
-  basis = basis * w.asDiagonal();
-  projection = w.cwiseInverse().asDiagonal() * projection;
-  XyzMatrix to_xyz = observer.weightedCmf().transpose() * basis;
+                                                       FactorVariant variant,
+                                                       LightMatrixKind light_matrix,
+                                                       double* white_min, bool normalise = true) {
+  Eigen::MatrixXd basis = span.basis * t;
+  Eigen::MatrixXd projection = t.partialPivLu().solve(span.projection);
+  if (normalise) {
+    const Eigen::VectorXd w = projection.rowwise().sum();
+    if (white_min) *white_min = w.cwiseAbs().minCoeff();
+    basis = basis * w.asDiagonal();
+    projection = w.cwiseInverse().asDiagonal() * projection;
+  }
+  const XyzMatrix cmf = observer.weightedCmf().transpose();
+  XyzMatrix to_xyz = cmf * basis;
   return std::make_unique<ComponentwiseModel>(ModelKind::kFactor, toString(variant),
-                                              observer.grid(), projection, to_xyz, basis);
+                                              observer.grid(), projection, to_xyz, basis,
+                                              light_matrix, cmf);
 }
 
 }  // namespace
@@ -342,11 +362,69 @@ Eigen::MatrixXd principalBasis(const TrainingSet& set, int k) {
   return basis;
 }
 
+StartingSpan lightWeightedSpan(const Observer& observer, const TrainingSet& set, int k) {
+  checkSet(set);
+  const int n = static_cast<int>(set.lights.front().size());
+  if (k < 1 || k > n) throw Error(fmt::format("basis size {} is outside 1..{}", k, n));
+  const Eigen::MatrixXd& cmf = observer.weightedCmf();  // n×3
+  Eigen::MatrixXd metric = Eigen::MatrixXd::Zero(n, n);
+  for (const auto& light : set.lights) {
+    const Eigen::MatrixXd lc = light.values().asDiagonal() * cmf;
+    metric.noalias() += lc * lc.transpose();
+  }
+  metric.diagonal().array() += 1e-2 * metric.trace() / n;
+  Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> root(metric);
+  const Eigen::VectorXd s = root.eigenvalues().cwiseSqrt();
+  const Eigen::MatrixXd half = root.eigenvectors() * s.asDiagonal() * root.eigenvectors().transpose();
+  const Eigen::MatrixXd inv_half =
+      root.eigenvectors() * s.cwiseInverse().asDiagonal() * root.eigenvectors().transpose();
+  // The image's spectra: reflectances and, exposure-normalised, their deep products.
+  std::vector<Eigen::VectorXd> columns;
+  const Eigen::VectorXd ybar = cmf.col(1);
+  for (size_t j = 0; j < set.reflectances.size(); ++j) {
+    const Eigen::VectorXd& r = set.reflectances[j].values();
+    columns.push_back(r);
+    if (set.absorbers.empty()) continue;
+    for (int m : set.depths) {
+      const Eigen::VectorXd t = set.absorbers[j].values().array().pow(m).matrix();
+      double y = 0.0;
+      for (const auto& light : set.lights) y += ybar.dot(light.values().cwiseProduct(t));
+      y /= static_cast<double>(set.lights.size());
+      if (y > 0) columns.push_back(r.cwiseProduct(t) / y);
+    }
+  }
+  Eigen::MatrixXd moment = Eigen::MatrixXd::Zero(n, n);
+  for (const auto& c : columns) {
+    const Eigen::VectorXd h = half * c;
+    moment.noalias() += h * h.transpose();
+  }
+  Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eig(moment);
+  Eigen::MatrixXd u(n, k);
+  for (int i = 0; i < k; ++i) u.col(i) = eig.eigenvectors().col(n - 1 - i);
+  // B0 = M^(−1/2)·U (M-orthonormal), P0 = Uᵀ·M^(1/2); then B0 = Q·R orthonormalised, P0 ← R·P0,
+  // so that the sharpening below works on an orthonormal basis as in the projected case.
+  const Eigen::MatrixXd b_metric = inv_half * u;
+  Eigen::HouseholderQR<Eigen::MatrixXd> qr(b_metric);
+  Eigen::MatrixXd q = qr.householderQ() * Eigen::MatrixXd::Identity(n, k);
+  Eigen::MatrixXd r = q.transpose() * b_metric;
+  for (int i = 0; i < k; ++i)
+    if (q.col(i).sum() < 0) q.col(i) = -q.col(i), r.row(i) = -r.row(i);  // positive mean
+  return {q, r * u.transpose() * half};
+}
+
 std::unique_ptr<ComponentwiseModel> trainFactorModel(const Observer& observer,
                                                      const TrainingSet& set, int k,
                                                      FactorVariant variant,
+                                                     LightMatrixKind light_matrix,
                                                      FactorTrainingReport* report) {
-  const Eigen::MatrixXd b0 = principalBasis(set, k);
+  StartingSpan span;
+  if (light_matrix == LightMatrixKind::kFull) {
+    span = lightWeightedSpan(observer, set, k);
+  } else {
+    span.basis = principalBasis(set, k);
+    span.projection = span.basis.transpose();
+  }
+  const Eigen::MatrixXd& b0 = span.basis;
   const int n = static_cast<int>(b0.rows());
   FactorTrainingReport local;
   FactorTrainingReport& rep = report ? *report : local;
@@ -356,20 +434,18 @@ std::unique_ptr<ComponentwiseModel> trainFactorModel(const Observer& observer,
     return nm;
   };
 
-  if (variant == FactorVariant::kPca) {
-    XyzMatrix to_xyz = observer.weightedCmf().transpose() * b0;
-    Eigen::MatrixXd projection = b0.transpose();
-    return std::make_unique<ComponentwiseModel>(ModelKind::kFactor, toString(variant),
-                                                observer.grid(), projection, to_xyz, b0);
-  }
+  if (variant == FactorVariant::kPca)
+    return modelFromTransform(observer, span, Eigen::MatrixXd::Identity(k, k), variant,
+                              light_matrix, nullptr, /*normalise=*/false);
   const std::vector<int> equal = equalBorders(n, k);
   const Eigen::MatrixXd t_equal = sharpeningTransform(b0, equal);
   if (variant == FactorVariant::kSharp) {
     rep.borders_nm = bordersNm(equal);
-    return modelFromTransform(observer, b0, t_equal, variant, &rep.white_min_abs);
+    return modelFromTransform(observer, span, t_equal, variant, light_matrix,
+                              &rep.white_min_abs);
   }
 
-  const ProductObjective objective(observer, set, b0);
+  const ProductObjective objective(observer, set, b0, span.projection, light_matrix);
   double searched_value = INFINITY;
   const std::vector<int> searched = searchBorders(objective, b0, equal, searched_value);
   // Start from whichever closed-form sharpening is better (and finite); fall back to the
@@ -419,7 +495,7 @@ std::unique_ptr<ComponentwiseModel> trainFactorModel(const Observer& observer,
   rep.objective_start = lm.start;
   rep.objective_final = lm.final;
   rep.iterations = lm.iterations;
-  return modelFromTransform(observer, b0, lm.t, variant, &rep.white_min_abs);
+  return modelFromTransform(observer, span, lm.t, variant, light_matrix, &rep.white_min_abs);
 }
 
 std::unique_ptr<LinearModel> trainLinearModel(const Observer& observer, const TrainingSet& set,

@@ -52,9 +52,27 @@ struct FactorTrainingReport {
 // n×k orthonormal basis: the first k left singular vectors of the colour signals.
 Eigen::MatrixXd principalBasis(const TrainingSet& set, int k);
 
+// The starting span of a model for full-spectrum light matrices (colour_model.h): there the
+// light never enters a componentwise product, so the basis has to hold what the image holds —
+// reflectances and their products with the absorbers (R ⊙ t^m, exposure-normalised) — as the
+// training lights see them: the principal components in the metric
+//   M = Σ_l diag(L_l) C Cᵀ diag(L_l) + ε·tr(M)/n·I     (C: weighted CMFs, n×3),
+// the XYZ error of a reconstruction under every light, ε = 1e-2 keeping the invisible rest of
+// the spectrum from being arbitrary. Returns an orthonormal n×k `basis` and the k×n
+// M-weighted `projection` onto it (projection · basis = I).
+struct StartingSpan {
+  Eigen::MatrixXd basis, projection;
+};
+StartingSpan lightWeightedSpan(const Observer& observer, const TrainingSet& set, int k);
+
+// light_matrix: what the model relights with, and so what training fits. Projected: the basis
+// spans the colour signals (light × reflectance) and products with the light's coefficients
+// are fitted; full: the basis spans lightWeightedSpan and products of reflectance and absorbers
+// are fitted with the light applied as a full spectrum.
 std::unique_ptr<ComponentwiseModel> trainFactorModel(const Observer& observer,
                                                      const TrainingSet& set, int k,
                                                      FactorVariant variant,
+                                                     LightMatrixKind light_matrix,
                                                      FactorTrainingReport* report = nullptr);
 std::unique_ptr<LinearModel> trainLinearModel(const Observer& observer, const TrainingSet& set,
                                               int k);

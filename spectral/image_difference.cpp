@@ -12,7 +12,7 @@ namespace {
 std::vector<float> relitXyz(const LightIndependentImage& image, const ColourModel& model,
                             const Spectrum& light) {
   PostIlluminator post(model);
-  post.setLight(model.project(light));
+  post.setLight(light);
   std::vector<float> xyz(3 * image.pixels());
   post.relightLinear(image, xyz, RelitSpace::kXyz);
   return xyz;

@@ -35,7 +35,8 @@ Eigen::MatrixXd LinearModel::interaction(const Spectrum& s) const {
   return basis_.transpose() * s.values().asDiagonal() * basis_;
 }
 
-Eigen::MatrixXd LinearModel::lightMatrix(const Eigen::VectorXd& light) const {
+Eigen::MatrixXd LinearModel::lightMatrix(const Spectrum& light_spectrum) const {
+  const Eigen::VectorXd light = project(light_spectrum);
   // XYZ = toXyz · S · a with S column-major in the image: entry (i, j) is channel i + k·j,
   // so column (i + k·j) of the result is toXyz(:, i) · a(j).
   const int k = channels();

@@ -17,8 +17,9 @@ class LinearModel final : public ColourModel {
   Eigen::VectorXd project(const Spectrum& s) const override;
   Eigen::MatrixXd interaction(const Spectrum& s) const override;
   int imageChannels() const override { return channels() * channels(); }
-  // XYZ = toXyz · S · light for a k×k scattered-radiance matrix S stored column-major.
-  Eigen::MatrixXd lightMatrix(const Eigen::VectorXd& light) const override;
+  // XYZ = toXyz · S · a for a k×k scattered-radiance matrix S stored column-major, a = the
+  // light's coefficients (projected: this model has no other light matrix).
+  Eigen::MatrixXd lightMatrix(const Spectrum& light) const override;
   nlohmann::json toJson() const override;
 
   const Eigen::MatrixXd& basis() const { return basis_; }

@@ -53,10 +53,14 @@ std::vector<ModelErrorRow> evaluateModel(const ColourModel& model, const Observe
   const int k = model.channels();
   const bool diag = model.componentwise();
 
+  // Componentwise models relight through their own light matrix (projected or full); linear:k
+  // applies its interaction matrices to the light's coefficients.
   std::vector<Eigen::VectorXd> light_coeffs;
+  std::vector<Eigen::MatrixXd> light_matrices;
   std::vector<Xyz> whites;
   for (const auto& l : set.lights) {
     light_coeffs.push_back(model.project(l));
+    if (diag) light_matrices.push_back(model.lightMatrix(l));
     whites.push_back(observer.xyz(l));
   }
   std::vector<int> cases{0};
@@ -69,15 +73,16 @@ std::vector<ModelErrorRow> evaluateModel(const ColourModel& model, const Observe
     for (int j = 0; j < nr; ++j) {
       const Eigen::VectorXd& refl = set.reflectances[j].values();
       const Eigen::VectorXd trans = set.absorbers[j].values().array().pow(m).matrix();
-      // Model operator for this reflectance (and absorber): c = op · light coefficients.
+      // The light-free coefficients (componentwise), or the operator that takes the light's
+      // coefficients to them (linear:k).
+      Eigen::VectorXd c;
       Eigen::MatrixXd op;
       if (diag) {
-        Eigen::VectorXd c = model.project(set.reflectances[j]);
+        c = model.project(set.reflectances[j]);
         if (m > 0) {
           const Eigen::VectorXd t = model.project(set.absorbers[j]);
           for (int i = 0; i < k; ++i) c[i] *= std::pow(t[i], m);
         }
-        op = c.asDiagonal();
       } else {
         op = model.interaction(set.reflectances[j]);
         if (m > 0) op = op * matrixPower(model.interaction(set.absorbers[j]), m);
@@ -87,12 +92,14 @@ std::vector<ModelErrorRow> evaluateModel(const ColourModel& model, const Observe
         // Exposure: both XYZ scaled so the light filtered by t^m has Y = 1.
         const double scale = m == 0 ? 1.0 : 1.0 / cmf.col(1).dot(light.cwiseProduct(trans));
         const Xyz exact = cmf.transpose() * light.cwiseProduct(refl).cwiseProduct(trans) * scale;
-        const Xyz approx = model.toXyz() * (op * light_coeffs[l]) * scale;
+        const Xyz approx = (diag ? Xyz(light_matrices[l] * c)
+                                 : Xyz(model.toXyz() * (op * light_coeffs[l]))) * scale;
         de[static_cast<size_t>(l) * nr + j] =
             deltaE2000(xyzToLab(exact, whites[l]), xyzToLab(approx, whites[l]));
       }
     }
-    rows.push_back({toString(model.kind()), k, model.variant(), set.name,
+    rows.push_back({toString(model.kind()), k, model.variant(),
+                    toString(model.lightMatrixKind()), model.name(), set.name,
                     m == 0 ? "product" : fmt::format("absorb{}", m), summarize(std::move(de))});
   }
   return rows;

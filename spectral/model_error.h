@@ -30,6 +30,8 @@ struct ModelErrorRow {
   std::string model;  // "factor"
   int k = 0;
   std::string variant;
+  std::string light_matrix;  // "full" or "projected"
+  std::string name;          // the model's name: "factor:6", "factor:6/projected", …
   std::string set;
   std::string evaluation_case;  // "product", "absorb4", "absorb16", "absorb64", "absorb256"
   ErrorStats stats;

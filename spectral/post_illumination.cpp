@@ -16,15 +16,15 @@ PostIlluminator::PostIlluminator(const ColourModel& model) : model_(model) {
     const double encoded = srgbEncode(static_cast<double>(i) / (kSrgbLutSize - 1));
     srgb_lut_[i] = static_cast<std::uint8_t>(std::lround(std::clamp(encoded, 0.0, 1.0) * 255.0));
   }
-  setLight(model.white());
+  setLight(Spectrum::constant(model.grid(), 1.0));
 }
 
-void PostIlluminator::setLight(const Eigen::VectorXd& light, double exposure) {
-  if (light.size() != model_.channels())
-    throw Error(fmt::format("relight: light has {} coefficients, model {} has {}", light.size(),
-                            model_.name(), model_.channels()));
+void PostIlluminator::setLight(const Spectrum& light, double exposure) {
+  if (!(light.grid() == model_.grid()))
+    throw Error(fmt::format("relight: the light is on {}, model {} on {}", light.grid().describe(),
+                            model_.name(), model_.grid().describe()));
   if (!light.allFinite() || !std::isfinite(exposure))
-    throw Error("relight: light coefficients or exposure are not finite");
+    throw Error("relight: light spectrum or exposure is not finite");
   light_matrix_ = model_.lightMatrix(light) * exposure;
 }
 

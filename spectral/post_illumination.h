@@ -1,6 +1,8 @@
 #pragma once
 // Post-illumination (DESIGN §5): a light-independent image → relit pixels under any light or
-// weighted mix of lights, XYZ = toXyz · diag(l) · (S + T ⊙ b). Everything light-dependent is
+// weighted mix of lights, XYZ = M(L) · (S + T ⊙ b), M(L) the model's light matrix
+// (ColourModel::lightMatrix: toXyz · diag(P·L) projected, CMF · diag(L) · B full). A mix is the
+// weighted sum of its lights' spectra, M being linear in L. Everything light-dependent is
 // folded into one 3×P matrix per light change (P = image planes), so a frame costs one
 // streaming pass over the planes: OpenMP over rows, SIMD across pixels.
 
@@ -21,8 +23,8 @@ class PostIlluminator {
  public:
   explicit PostIlluminator(const ColourModel& model);
 
-  // light: the (mixed) light's coefficients; exposure scales the result.
-  void setLight(const Eigen::VectorXd& light, double exposure = 1.0);
+  // light: the (mixed) light's spectrum; exposure scales the result.
+  void setLight(const Spectrum& light, double exposure = 1.0);
   // Background reflectance coefficients, added as T ⊙ b where the image carries T.
   void setBackground(const Eigen::VectorXd& background);
 

@@ -13,7 +13,7 @@ nlohmann::json pageLight(const PageLightContext& context, const std::string& nam
   const ColourModel& model = context.model;
   PostIlluminator post(model);
   if (context.background) post.setBackground(model.project(*context.background));
-  post.setLight(model.project(context.observer.unitLuminance(spectrum)));
+  post.setLight(context.observer.unitLuminance(spectrum));
   // The matrix depends on the image only through its plane counts.
   const LightIndependentImage shape(1, 1, model.imageChannels(), context.t_channels);
   const Eigen::MatrixXd m = post.foldedMatrix(shape, RelitSpace::kLinearSrgb);
@@ -35,7 +35,7 @@ SampleChoice chooseSamples(const PageLightContext& context, const Scene& scene,
   std::vector<std::uint8_t> a(3 * image.pixels()), b(3 * image.pixels());
   SampleChoice choice;
   for (const auto& light : scene.lights) {
-    post.setLight(context.model.project(context.observer.unitLuminance(light.spectrum)));
+    post.setLight(context.observer.unitLuminance(light.spectrum));
     post.relightSrgb8(full, a);
     post.relightSrgb8(half, b);
     for (size_t i = 0; i < a.size(); ++i)

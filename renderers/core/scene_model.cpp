@@ -43,7 +43,7 @@ double worstMean(const ColourModel& model, const Observer& observer, const Evalu
 
 // Bump when training, its objective, its defaults or the auto rule change: models cached by an
 // older version are then rebuilt rather than reused.
-constexpr int kSceneModelVersion = 1;
+constexpr int kSceneModelVersion = 2;  // 2: full-spectrum light matrices
 
 nlohmann::json valuesOf(const std::vector<Spectrum>& spectra) {
   nlohmann::json out = nlohmann::json::array();
@@ -87,21 +87,24 @@ nlohmann::json toCache(const SceneModel& m) {
 
 SceneModel trainSceneModel(const std::string& name, const Scene& scene, const Observer& observer,
                            const EvaluationSet& palette, const TrainingSet& training) {
+  const LightMatrixKind light_matrix =
+      name == "auto" ? LightMatrixKind::kFull : parseModelName(name).light_matrix;
   auto describe = [&](int k, double error) {
-    return fmt::format("factor:{} trained on the scene palette ({} lights × {} materials; mean "
-                       "ΔE2000 {:.3f} single/deep)",
-                       k, training.lights.size(), training.reflectances.size(), error);
+    return fmt::format("factor:{} trained on the scene palette ({} lights × {} materials, {} "
+                       "light matrices; mean ΔE2000 {:.3f} single/deep)",
+                       k, training.lights.size(), training.reflectances.size(),
+                       toString(light_matrix), error);
   };
   if (name != "auto") {
     const int k = parseModelName(name).k;
-    auto model = trainFactorModel(observer, training, k, FactorVariant::kRefined);
+    auto model = trainFactorModel(observer, training, k, FactorVariant::kRefined, light_matrix);
     const double error = worstMean(*model, observer, palette);
     return {std::move(model), describe(k, error), name, error};
   }
   std::unique_ptr<ColourModel> best;
   double best_error = INFINITY;
   for (int k = 3; k <= 10; ++k) {
-    auto model = trainFactorModel(observer, training, k, FactorVariant::kRefined);
+    auto model = trainFactorModel(observer, training, k, FactorVariant::kRefined, light_matrix);
     const double error = worstMean(*model, observer, palette);
     if (error < best_error) best_error = error, best = std::move(model);
     if (best_error <= scene.auto_target)
@@ -136,9 +139,10 @@ SceneModel makeSceneModel(const std::string& name, const Scene& scene, const Obs
     switch (parsed.kind) {
       case ModelKind::kRgb: return {makeRgbModel(observer), "rgb", name};
       case ModelKind::kSpectral:
-        return {makeSpectralModel(observer, parsed.k),
-                fmt::format("spectral:{} ({} bands of the {}-sample grid)", parsed.k, parsed.k,
-                            observer.grid().count),
+        return {makeSpectralModel(observer, parsed.k, parsed.light_matrix),
+                fmt::format("spectral:{} ({} bands of the {}-sample grid, {} light matrices)",
+                            parsed.k, parsed.k, observer.grid().count,
+                            toString(parsed.light_matrix)),
                 name};
       case ModelKind::kLinear:
         throw Error(fmt::format("{}: linear:k has no componentwise product; the renderers take "

@@ -2,7 +2,8 @@
 // The colour model a scene renders with — "model no more than a scene needs" (DESIGN §4):
 //   rgb, spectral:n   fixed models;
 //   factor:k          trained on the scene's own palette: its lights × its materials'
-//                     reflectances, with deep products of its absorbers;
+//                     reflectances, with deep products of its absorbers, for full-spectrum
+//                     light matrices (factor:k/projected: for projected ones, the paper's);
 //   auto              the smallest factor k (3..10) whose mean ΔE2000 on that palette, single
 //                     and after 256 absorption steps, stays within the scene's model_target.
 

@@ -31,7 +31,7 @@ Scene loadShipped(const std::string& name) {
 double meanCoveredY(const LightIndependentImage& image, const ColourModel& model,
                     const Spectrum& light) {
   PostIlluminator post(model);
-  post.setLight(model.project(test::rendererObserver().unitLuminance(light)));
+  post.setLight(test::rendererObserver().unitLuminance(light));
   std::vector<float> xyz(3 * image.pixels());
   post.relightLinear(image, xyz, RelitSpace::kXyz);
   double sum = 0;

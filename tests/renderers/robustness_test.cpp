@@ -121,7 +121,7 @@ TEST(Robustness, ChannelCounts3To16AndZeroSumMixesStayFinite) {
                 : makeSceneModel("factor:6", scene, test::rendererObserver()).model;
     ASSERT_EQ(model->channels(), k <= 16 ? k : 6);
     const auto light = [&](const char* name) {
-      return model->project(test::rendererObserver().unitLuminance(test::rendererLibrary().get(name)));
+      return test::rendererObserver().unitLuminance(test::rendererLibrary().get(name)).values();
     };
     const std::vector<Eigen::VectorXd> lights = {light("A"), light("F11")};
     for (const std::string& backend : rendererNames()) {
@@ -130,7 +130,7 @@ TEST(Robustness, ChannelCounts3To16AndZeroSumMixesStayFinite) {
       expectFiniteAndBounded(image, -50.0, 50.0, false, backend + " " + model->name());
       PostIlluminator post(*model);
       for (const std::vector<double>& w : {std::vector<double>{1.0, -1.0}, {0.0, 0.0}, {0.0, 1.0}}) {
-        post.setLight(mixLights(lights, w));
+        post.setLight(Spectrum(model->grid(), mixLights(lights, w)));
         std::vector<float> relit(3 * image.pixels());
         post.relightLinear(image, relit);
         for (float v : relit) ASSERT_TRUE(std::isfinite(v)) << backend << " k " << k;

@@ -64,13 +64,29 @@ TEST(SpectralModel, BandsAverageTheirSamples) {
 }
 
 TEST(FactorModel, WhiteMapsToOnesForEverySharpenedVariant) {
-  for (auto variant : {FactorVariant::kSharp, FactorVariant::kRefined})
-    for (int k : {3, 5, 6}) {
-      const auto m = trainFactorModel(test::observer(), test::smallTrainingSet(), k, variant);
-      EXPECT_TRUE(m->white().isApprox(Eigen::VectorXd::Ones(k), 1e-9))
-          << toString(variant) << " k=" << k << ": " << m->white().transpose();
-      EXPECT_EQ(m->name(), "factor:" + std::to_string(k));
-    }
+  for (auto matrix : {LightMatrixKind::kFull, LightMatrixKind::kProjected})
+    for (auto variant : {FactorVariant::kSharp, FactorVariant::kRefined})
+      for (int k : {3, 5, 6}) {
+        const auto m =
+            trainFactorModel(test::observer(), test::smallTrainingSet(), k, variant, matrix);
+        EXPECT_TRUE(m->white().isApprox(Eigen::VectorXd::Ones(k), 1e-9))
+            << toString(variant) << " k=" << k << ": " << m->white().transpose();
+        EXPECT_EQ(m->name(), "factor:" + std::to_string(k) +
+                                 (matrix == LightMatrixKind::kFull ? "" : "/projected"));
+        // The basis reconstructs its coefficients: P·B = I.
+        EXPECT_TRUE((m->projection() * m->basis()).isIdentity(1e-9)) << m->name();
+      }
+}
+
+TEST(ColourModel, NamesCarryTheLightMatrix) {
+  EXPECT_EQ(parseModelName("factor:6").light_matrix, LightMatrixKind::kFull);
+  EXPECT_EQ(parseModelName("spectral:31").light_matrix, LightMatrixKind::kFull);
+  EXPECT_EQ(parseModelName("rgb").light_matrix, LightMatrixKind::kProjected);
+  EXPECT_EQ(parseModelName("factor:6/projected").light_matrix, LightMatrixKind::kProjected);
+  EXPECT_EQ(parseModelName("factor:6/projected").str(), "factor:6/projected");
+  EXPECT_EQ(parseModelName("spectral:9/full").str(), "spectral:9");
+  for (const char* bad : {"rgb/full", "linear:4/full", "factor:6/spectral", "factor:6/"})
+    EXPECT_THROW(parseModelName(bad), Error) << bad;
 }
 
 TEST(LinearModel, InteractionOfFlatWhiteIsIdentityAndMatchesFullSpectrum) {
@@ -92,8 +108,11 @@ TEST(ColourModel, SavesAndLoadsEveryKind) {
   std::vector<std::unique_ptr<ColourModel>> models;
   models.push_back(makeRgbModel(test::observer()));
   models.push_back(makeSpectralModel(test::observer(), 31));
+  models.push_back(makeSpectralModel(test::observer(), 31, LightMatrixKind::kProjected));
   models.push_back(trainFactorModel(test::observer(), test::smallTrainingSet(), 4,
-                                    FactorVariant::kRefined));
+                                    FactorVariant::kRefined, LightMatrixKind::kFull));
+  models.push_back(trainFactorModel(test::observer(), test::smallTrainingSet(), 4,
+                                    FactorVariant::kRefined, LightMatrixKind::kProjected));
   models.push_back(trainLinearModel(test::observer(), test::smallTrainingSet(), 4));
   const Spectrum s = test::library().get("ColorChecker/orange");
   for (const auto& m : models) {
@@ -101,6 +120,9 @@ TEST(ColourModel, SavesAndLoadsEveryKind) {
     saveModel(*m, path);
     const auto back = loadModel(path);
     EXPECT_EQ(back->name(), m->name());
+    EXPECT_EQ(back->lightMatrixKind(), m->lightMatrixKind());
+    const Spectrum f11 = test::library().get("F11");
+    EXPECT_TRUE(back->lightMatrix(f11).isApprox(m->lightMatrix(f11), 1e-12)) << m->name();
     EXPECT_EQ(back->variant(), m->variant());
     EXPECT_TRUE(back->project(s).isApprox(m->project(s), 1e-12)) << m->name();
     EXPECT_TRUE(back->toXyz().isApprox(m->toXyz(), 1e-12)) << m->name();

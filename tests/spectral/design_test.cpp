@@ -141,7 +141,8 @@ double worstProjectionError(const DesignResult& r) {
   // The PCA variant spans the same subspace as the refined one (sharpening and its refinement
   // only change the k×k transform T in B = B0·T), so B·P is the same and it trains in
   // milliseconds instead of a minute.
-  const auto model = trainFactorModel(test::observer(), set, 6, FactorVariant::kPca);
+  const auto model = trainFactorModel(test::observer(), set, 6, FactorVariant::kPca,
+                                      LightMatrixKind::kProjected);
   const Eigen::MatrixXd bp = model->basis() * model->projection();
   double worst = 0;
   for (const auto& l : set.lights)

@@ -66,14 +66,31 @@ TEST(ModelError, RefinedFactorModelBeatsRgbAndReachesOneAtNine) {
   };
   const auto rgb = means(*makeRgbModel(test::observer()));
   EXPECT_NEAR(rgb.at("product"), 2.5, 0.2);  // prototype: 2.60 (its own test split)
-  const auto k8 = means(*trainFactorModel(test::observer(), sets.training, 8, FactorVariant::kRefined));
+  const auto train = [&](int k, FactorVariant variant, LightMatrixKind matrix) {
+    return means(*trainFactorModel(test::observer(), sets.training, k, variant, matrix));
+  };
+  const auto k8 = train(8, FactorVariant::kRefined, LightMatrixKind::kProjected);
   EXPECT_LT(k8.at("product"), rgb.at("product"));
   EXPECT_LT(k8.at("absorb256"), rgb.at("absorb256"));
-  const auto k9 = means(*trainFactorModel(test::observer(), sets.training, 9, FactorVariant::kRefined));
+  const auto k9 = train(9, FactorVariant::kRefined, LightMatrixKind::kProjected);
   EXPECT_LE(k9.at("product"), 1.0);
   EXPECT_LE(k9.at("absorb256"), 1.0);
-  const auto pca9 = means(*trainFactorModel(test::observer(), sets.training, 9, FactorVariant::kPca));
+  const auto pca9 = train(9, FactorVariant::kPca, LightMatrixKind::kProjected);
   EXPECT_LT(k9.at("product"), pca9.at("product"));
+}
+
+// Issue 19, goal 5: with full-spectrum light matrices a generic basis reaches mean ≤ 1 on the
+// held-out single and deepest products at k ≤ 8 (the numpy experiment of the issue's note:
+// 0.11 / 0.50 at k = 7), which the projected model needs k = 9 for.
+TEST(ModelError, FullLightMatricesReachOneAtSevenOnTheGenericSet) {
+  const auto sets = standardSets(test::library(), test::observer(), standardLightNames());
+  const EvaluationSet& test_set = sets.evaluation[1];
+  const auto model = trainFactorModel(test::observer(), sets.training, 7, FactorVariant::kRefined,
+                                      LightMatrixKind::kFull);
+  for (const auto& r : evaluateModel(*model, test::observer(), test_set)) {
+    EXPECT_TRUE(r.stats.finite) << r.evaluation_case;
+    EXPECT_LE(r.stats.mean, 1.0) << r.evaluation_case;
+  }
 }
 
 }  // namespace

@@ -28,14 +28,16 @@ LightIndependentImage randomImage(int w, int h, int k, int t_channels, unsigned 
 }
 
 TEST(PostIllumination, RelightOfAKnownImage) {
-  // Two pixels under rgb with the light's coefficients l: XYZ = toXyz · (l ⊙ S).
+  // Two pixels under rgb (projected light matrices) with the light's coefficients l = P·L:
+  // XYZ = toXyz · (l ⊙ S).
   const auto rgb = makeRgbModel(test::observer());
   LightIndependentImage img(2, 1, 3, 0);
   const float s0[3] = {0.2f, 0.4f, 0.6f}, s1[3] = {1.0f, 0.0f, 0.5f};
   for (int c = 0; c < 3; ++c) img.setSample(c, 0, 0, s0[c]), img.setSample(c, 1, 0, s1[c]);
-  const Eigen::Vector3d light(0.5, 1.0, 2.0);
+  const Spectrum spectrum = test::observer().unitLuminance(test::library().get("A"));
+  const Eigen::Vector3d light = rgb->project(spectrum);
   PostIlluminator post(*rgb);
-  post.setLight(light, 1.5);
+  post.setLight(spectrum, 1.5);
   std::vector<float> xyz(6);
   post.relightLinear(img, xyz, RelitSpace::kXyz);
   for (int px = 0; px < 2; ++px) {
@@ -56,13 +58,13 @@ TEST(PostIllumination, RelightOfAKnownImage) {
 }
 
 // Relighting the image of a flat white surface under light l gives the XYZ the model computes
-// for l × white to float rounding (post-illumination equals baking the light in); under the
-// exact spectral:81 model that is the light's own white, Y = 1.
+// for l × white to float rounding (projected light matrices: post-illumination equals baking
+// the light in); under the exact spectral:81 model that is the light's own white, Y = 1.
 TEST(PostIllumination, RelitWhiteEqualsTheModelsProductAndTheLightsWhite) {
   std::vector<std::unique_ptr<ColourModel>> models;
-  models.push_back(makeSpectralModel(test::observer(), 81));
+  models.push_back(makeSpectralModel(test::observer(), 81, LightMatrixKind::kProjected));
   models.push_back(trainFactorModel(test::observer(), test::smallTrainingSet(), 6,
-                                    FactorVariant::kRefined));
+                                    FactorVariant::kRefined, LightMatrixKind::kProjected));
   for (const auto& model : models) {
     const int k = model->channels();
     LightIndependentImage img(4, 3, k, 0);
@@ -73,7 +75,7 @@ TEST(PostIllumination, RelitWhiteEqualsTheModelsProductAndTheLightsWhite) {
     for (const char* name : {"D65", "A", "F11"}) {
       SCOPED_TRACE(model->name() + " " + name);
       const Spectrum l = test::observer().unitLuminance(test::library().get(name));
-      post.setLight(model->project(l));
+      post.setLight(l);
       std::vector<float> xyz(3 * 12);
       post.relightLinear(img, xyz, RelitSpace::kXyz);
       const Xyz baked = model->toXyz() * model->project(l).cwiseProduct(model->white());
@@ -87,6 +89,47 @@ TEST(PostIllumination, RelitWhiteEqualsTheModelsProductAndTheLightsWhite) {
   }
 }
 
+// Full-spectrum light matrices relight a pixel c as the spectrum B·c times the light's whole
+// spectrum, X = Σ_λ x̄(λ) L(λ) (B·c)(λ) Δλ: checked against the observer's own XYZ of that
+// product, for band models and a trained factor model, with a backdrop seen through T.
+TEST(PostIllumination, FullLightMatricesTakeTheLastProductWithTheWholeSpectrum) {
+  std::vector<std::unique_ptr<ComponentwiseModel>> models;
+  models.push_back(makeSpectralModel(test::observer(), 5));
+  models.push_back(makeSpectralModel(test::observer(), 81));
+  models.push_back(trainFactorModel(test::observer(), test::smallTrainingSet(), 6,
+                                    FactorVariant::kRefined, LightMatrixKind::kFull));
+  for (const auto& model : models) {
+    ASSERT_EQ(model->lightMatrixKind(), LightMatrixKind::kFull);
+    const int k = model->channels();
+    const auto img = randomImage(3, 2, k, k, 19);
+    const Eigen::VectorXd b = Eigen::VectorXd::LinSpaced(k, 0.3, 0.8);
+    PostIlluminator post(*model);
+    post.setBackground(b);
+    for (const char* name : {"F11", "LED-B1"}) {
+      SCOPED_TRACE(model->name() + " " + name);
+      const Spectrum l = test::observer().unitLuminance(test::library().get(name));
+      post.setLight(l, 0.8);
+      std::vector<float> xyz(3 * img.pixels());
+      post.relightLinear(img, xyz, RelitSpace::kXyz);
+      Eigen::VectorXd c(k);
+      for (int ch = 0; ch < k; ++ch)
+        c[ch] = img.scattered(ch, 2, 1) + img.transmittance(ch, 2, 1) * b[ch];
+      const Xyz exact = 0.8 * test::observer().xyz(l * Spectrum(l.grid(), model->basis() * c));
+      for (int a = 0; a < 3; ++a) EXPECT_NEAR(xyz[3 * 5 + a], exact[a], 1e-5 * (1 + exact[a]));
+    }
+  }
+  // Band means of a spiky light lose what the full spectrum keeps: under F11 the 5-band model's
+  // relit flat white is off by more than 1 % projected, and equals the light's white full.
+  const auto projected = makeSpectralModel(test::observer(), 5, LightMatrixKind::kProjected);
+  const auto full = makeSpectralModel(test::observer(), 5, LightMatrixKind::kFull);
+  const Spectrum f11 = test::observer().unitLuminance(test::library().get("F11"));
+  const Xyz white = test::observer().xyz(f11);
+  const Xyz via_full = full->lightMatrix(f11) * full->white();
+  const Xyz via_projected = projected->lightMatrix(f11) * projected->white();
+  EXPECT_NEAR((via_full - white).norm(), 0.0, 1e-9);
+  EXPECT_GT((via_projected - white).norm(), 0.01);
+}
+
 TEST(PostIllumination, EveryWidthAndInstructionSetGivesTheSamePixels) {
   for (int k : {3, 4, 6, 8, 13, 16}) {
     const auto model = makeSpectralModel(test::observer(), k);
@@ -97,7 +140,7 @@ TEST(PostIllumination, EveryWidthAndInstructionSetGivesTheSamePixels) {
         for (int width : {37, 45}) {
           const auto img = randomImage(width, 5, k, t_channels, 7 + k).withStorage(storage);
           PostIlluminator post(*model);
-          post.setLight(model->project(test::observer().unitLuminance(test::library().get("F2"))));
+          post.setLight(test::observer().unitLuminance(test::library().get("F2")));
           post.setBackground(Eigen::VectorXd::LinSpaced(k, 0.2, 0.9));
           post.forceKernel({.dynamic_width = true, .isa = KernelIsa::kPortable});
           std::vector<float> reference(3 * img.pixels());
@@ -136,7 +179,7 @@ TEST(PostIllumination, SpectralEightyOneTakesTheDynamicPathAndIsExact) {
   const auto img = randomImage(9, 4, 81, 0, 3);
   const Spectrum l = test::observer().unitLuminance(test::library().get("LED-B1"));
   PostIlluminator post(*model);
-  post.setLight(model->project(l));
+  post.setLight(l);
   std::vector<float> xyz(3 * img.pixels());
   post.relightLinear(img, xyz, RelitSpace::kXyz);
   Eigen::VectorXd s(81);
@@ -147,14 +190,15 @@ TEST(PostIllumination, SpectralEightyOneTakesTheDynamicPathAndIsExact) {
 }
 
 TEST(PostIllumination, BackgroundSeenThroughTransmittance) {
-  // S = 0, T = 0.5 per channel, background b: XYZ = toXyz · (l ⊙ T ⊙ b).
-  const auto model = makeSpectralModel(test::observer(), 4);
+  // S = 0, T = 0.5 per channel, background b: XYZ = toXyz · (l ⊙ T ⊙ b), l = P·L (projected).
+  const auto model = makeSpectralModel(test::observer(), 4, LightMatrixKind::kProjected);
   LightIndependentImage spectral_t(1, 1, 4, 4), scalar_t(1, 1, 4, 1);
   for (int c = 0; c < 4; ++c) spectral_t.setSample(4 + c, 0, 0, 0.5f);
   scalar_t.setSample(4, 0, 0, 0.5f);
-  const Eigen::Vector4d light(1, 2, 3, 4), b(0.1, 0.2, 0.3, 0.4);
+  const Spectrum spectrum = test::observer().unitLuminance(test::library().get("D65"));
+  const Eigen::Vector4d light = model->project(spectrum), b(0.1, 0.2, 0.3, 0.4);
   PostIlluminator post(*model);
-  post.setLight(light);
+  post.setLight(spectrum);
   post.setBackground(b);
   const Eigen::Vector3d expect = model->toXyz() * (0.5 * light.cwiseProduct(b));
   for (const auto* img : {&spectral_t, &scalar_t}) {
@@ -167,16 +211,16 @@ TEST(PostIllumination, BackgroundSeenThroughTransmittance) {
 TEST(PostIllumination, MixOfLightsIsTheWeightedSumOfRelitImages) {
   const auto model = makeSpectralModel(test::observer(), 6);
   const auto img = randomImage(16, 16, 6, 0, 11);
-  const auto a = model->project(test::observer().unitLuminance(test::library().get("A")));
-  const auto f = model->project(test::observer().unitLuminance(test::library().get("F11")));
+  const Spectrum a = test::observer().unitLuminance(test::library().get("A"));
+  const Spectrum f = test::observer().unitLuminance(test::library().get("F11"));
   PostIlluminator post(*model);
   std::vector<float> ra(3 * img.pixels()), rf(ra.size()), rmix(ra.size());
   post.setLight(a);
   post.relightLinear(img, ra);
   post.setLight(f);
   post.relightLinear(img, rf);
-  const std::vector<Eigen::VectorXd> lights{a, f};
-  post.setLight(mixLights(lights, std::vector<double>{0.3, 0.7}));
+  const std::vector<Eigen::VectorXd> lights{a.values(), f.values()};
+  post.setLight(Spectrum(a.grid(), mixLights(lights, std::vector<double>{0.3, 0.7})));
   post.relightLinear(img, rmix);
   for (size_t i = 0; i < ra.size(); ++i) EXPECT_NEAR(rmix[i], 0.3 * ra[i] + 0.7 * rf[i], 1e-5);
 }
@@ -189,9 +233,10 @@ TEST(PostIllumination, LinearModelRelightsItsMatrixImage) {
   LightIndependentImage img(1, 1, 16, 0);
   for (int j = 0; j < 4; ++j)
     for (int i = 0; i < 4; ++i) img.setSample(i + 4 * j, 0, 0, static_cast<float>(s(i, j)));
-  const auto light = lin->project(test::observer().unitLuminance(test::library().get("D65")));
+  const Spectrum spectrum = test::observer().unitLuminance(test::library().get("D65"));
+  const Eigen::VectorXd light = lin->project(spectrum);
   PostIlluminator post(*lin);
-  post.setLight(light);
+  post.setLight(spectrum);
   std::vector<float> xyz(3);
   post.relightLinear(img, xyz, RelitSpace::kXyz);
   const Eigen::Vector3d expect = lin->toXyz() * (s * light);
@@ -219,8 +264,9 @@ TEST(PostIllumination, NonFiniteInputIsReportedWithItsPixelNotWritten) {
 TEST(PostIllumination, RejectsMismatchedShapes) {
   const auto model = makeSpectralModel(test::observer(), 6);
   PostIlluminator post(*model);
-  EXPECT_THROW(post.setLight(Eigen::VectorXd::Ones(5)), Error);
-  EXPECT_THROW(post.setLight(Eigen::VectorXd::Constant(6, NAN)), Error);
+  EXPECT_THROW(post.setLight(Spectrum::constant(WavelengthGrid{400, 10, 31}, 1.0)), Error);
+  EXPECT_THROW(post.setLight(Spectrum::constant(model->grid(), NAN)), Error);
+  EXPECT_THROW(post.setLight(Spectrum::constant(model->grid(), 1.0), INFINITY), Error);
   LightIndependentImage wrong(2, 2, 4, 0);
   std::vector<float> out(12);
   EXPECT_THROW(post.relightLinear(wrong, out), Error);

@@ -26,9 +26,8 @@ LightIndependentImage randomImage(int w, int h, int k, int kt, unsigned seed) {
   return img;
 }
 
-Eigen::VectorXd lightCoefficients(const ColourModel& model, const char* name) {
-  return model.project(
-      test::rendererObserver().unitLuminance(test::rendererLibrary().get(name)));
+Spectrum unitLight(const char* name) {
+  return test::rendererObserver().unitLuminance(test::rendererLibrary().get(name));
 }
 
 TEST(GlRelight, EqualsTheCpuRelightToOneCodeValue) {
@@ -48,7 +47,7 @@ TEST(GlRelight, EqualsTheCpuRelightToOneCodeValue) {
     GlRelighter gl;
     gl.setImage(image);
     for (const char* light : {"D65", "A", "F11"}) {
-      post.setLight(lightCoefficients(*model, light), 1.3);
+      post.setLight(unitLight(light), 1.3);
       if (c.background)
         post.setBackground(model->project(test::rendererLibrary().get("ColorChecker/cyan")));
       std::vector<std::uint8_t> cpu(3 * image.pixels()), gpu(3 * image.pixels());

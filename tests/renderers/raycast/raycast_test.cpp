@@ -75,26 +75,31 @@ TEST(Raycast, SpectralSlabTransmittancePerChannel) {
 }
 
 // Post-illumination equals a render with the light baked into the classification, for every
-// registered backend and for rgb, factor:k and spectral:n.
+// registered backend and for rgb, factor:k and spectral:n with projected light matrices (the
+// light's coefficients multiply the materials' componentwise, which is what baking means; full
+// light matrices take the light's whole spectrum, which no componentwise bake can: their
+// relit pixels are checked against the spectral product in PostIllumination tests).
 TEST(Raycast, RelitEqualsBakedInLight) {
   const Scene scene = test::phantomScene();
   std::vector<std::unique_ptr<ColourModel>> models;
   models.push_back(makeRgbModel(test::rendererObserver()));
-  models.push_back(makeSceneModel("factor:6", scene, test::rendererObserver()).model);
-  models.push_back(makeSpectralModel(test::rendererObserver(), 31));
+  models.push_back(makeSceneModel("factor:6/projected", scene, test::rendererObserver()).model);
+  models.push_back(makeSpectralModel(test::rendererObserver(), 31, LightMatrixKind::kProjected));
   for (const std::string& name : rendererNames()) {
     const auto renderer = makeRenderer(name);
     for (const auto& model : models) {
       SCOPED_TRACE(name + " " + model->name());
-      const Eigen::VectorXd light =
-          model->project(test::rendererObserver().unitLuminance(test::rendererLibrary().get("A")));
+      const Spectrum spectrum =
+          test::rendererObserver().unitLuminance(test::rendererLibrary().get("A"));
+      const Eigen::VectorXd light = model->project(spectrum);
       const auto independent = renderScene(scene, *model, *renderer);
       const auto baked = renderScene(scene, *model, *renderer, light);
       PostIlluminator post(*model);
       std::vector<float> relit(3 * independent.pixels()), direct(relit.size());
-      post.setLight(light);
+      post.setLight(spectrum);
       post.relightLinear(independent, relit, RelitSpace::kXyz);
-      post.setLight(Eigen::VectorXd::Ones(model->channels()));
+      ASSERT_TRUE(model->white().isApprox(Eigen::VectorXd::Ones(model->channels())));
+      post.setLight(Spectrum::constant(spectrum.grid(), 1.0));  // coefficients: all ones
       post.relightLinear(baked, direct, RelitSpace::kXyz);
       double peak = 0;
       for (float v : direct) peak = std::max(peak, std::abs(double(v)));
