@@ -7,7 +7,7 @@
 
 #include "renderers/core/classification.h"
 #include "renderers/core/scene.h"
-#include "renderers/core/scene_model.h"
+#include "renderers/scene_model.h"
 #include "renderers/registry.h"
 #include "spectral/colorimetry.h"
 #include "spectral/data_dir.h"

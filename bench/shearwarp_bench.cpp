@@ -11,7 +11,7 @@
 
 #include "renderers/core/classification.h"
 #include "renderers/core/scene.h"
-#include "renderers/core/scene_model.h"
+#include "renderers/scene_model.h"
 #include "renderers/raycast/raycast_renderer.h"
 #include "renderers/shearwarp/rle_volume.h"
 #include "renderers/shearwarp/shear_warp_factorization.h"

@@ -6,7 +6,7 @@
 
 #include "renderers/core/classification.h"
 #include "renderers/core/scene_render.h"
-#include "renderers/core/scene_model.h"
+#include "renderers/scene_model.h"
 #include "renderers/registry.h"
 #include "spectral/componentwise_model.h"
 #include "spectral/error.h"
@@ -165,12 +165,14 @@ RunResult ComparisonSession::run(const RunSpec& spec) {
     }
     relight_total += best;
     const ImageDifference vs_ref =
-        compareRelit(r.image, model, reference_, *reference_model_, ill.spectrum, white);
+        compareRelit(r.image, model, reference_, *reference_model_, ill.spectrum, white, 0.98,
+                     scene_.background);
     lr.vs_reference = vs_ref.stats;
     lr.error_map = vs_ref.map;
     if (raycast)
       lr.vs_raycast =
-          compareRelit(r.image, model, raycast->image, *raycast->chosen.model, ill.spectrum, white)
+          compareRelit(r.image, model, raycast->image, *raycast->chosen.model, ill.spectrum, white,
+                       0.98, scene_.background)
               .stats;
     const auto t_run = luminanceTransmittance(r.image, model, ill.spectrum);
     const auto t_ref = ref_light_t(ill.spectrum);

@@ -13,7 +13,7 @@
 #include <vector>
 
 #include "renderers/core/scene.h"
-#include "renderers/core/scene_model.h"
+#include "renderers/scene_model.h"
 #include "spectral/colorimetry.h"
 #include "spectral/colour_model.h"
 #include "spectral/light_independent_image.h"

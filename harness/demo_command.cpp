@@ -27,7 +27,8 @@ int runDemo(const DemoOptions& o) {
     c.scene = (fs::path(o.data_dir) / "scenes" / (name + ".json")).string();
     c.out_dir = (fs::path(o.out_dir) / name).string();
     c.models = o.quick ? std::vector<std::string>{"rgb", "factor:6"}
-                       : std::vector<std::string>{"rgb", "factor:4", "factor:6", "factor:8",
+                       : std::vector<std::string>{"rgb", "factor:4", "factor:6",
+                                                  "factor:6/projected", "factor:8",
                                                   "spectral:31"};
     c.width = c.height = o.quick ? 128 : 256;
     // gl ray casts by default; its splats run beside it, so the report shows both.

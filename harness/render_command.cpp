@@ -23,7 +23,7 @@
 #include "renderers/core/volume_brick.h"
 #include "renderers/core/work_estimate.h"
 #include "renderers/core/scene.h"
-#include "renderers/core/scene_model.h"
+#include "renderers/scene_model.h"
 #include "renderers/core/scene_render.h"
 #include "renderers/registry.h"
 #include "spectral/atomic_file.h"
@@ -321,6 +321,26 @@ int runRender(const RenderOptions& o) {
   ClassifiedVolume classified;
   phase(dist, [&] {
     chosen_model = makeSceneModel(o.model.empty() ? scene.model : o.model, scene, observer);
+  });
+  if (dist && chosen_model->asked == "auto") {
+    // Each brick's probe saw its own part of the volume: all take the most channels any asked
+    // for (a factor:k, or spectral:81 past factor:16), so every brick renders one model.
+    const int k = chosen_model->model->channels();
+    const int agreed = static_cast<int>(dist->wholeRange({k, k}).second);
+    if (agreed != k)
+      phase(dist, [&] {
+        SceneModel wider = makeSceneModel(
+            agreed > 16 ? fmt::format("spectral:{}", agreed) : fmt::format("factor:{}", agreed),
+            scene, observer);
+        wider.description = fmt::format("auto: {} — the most channels any brick's probe asked "
+                                        "for (this brick's: {})",
+                                        wider.description, chosen_model->model->name());
+        wider.asked = "auto";
+        wider.target = scene.auto_target;
+        chosen_model = std::move(wider);
+      });
+  }
+  phase(dist, [&] {
     classified = classifyScene(scene, *chosen_model->model);
     // The light-independent image and every relit image, before any of them is allocated.
     const std::uint64_t relit_count = scene.lights.size() + scene.mixes.size();

@@ -231,6 +231,10 @@ struct LmResult {
   int iterations;
 };
 
+// An objective this small (squared CIELAB differences summed over the training set) is a fit
+// to within 1e-3 ΔE everywhere: iterating on, or trying more starts, changes nothing visible.
+constexpr double kNegligibleObjective = 1e-6;
+
 LmResult levenbergMarquardt(const ProductObjective& objective, Eigen::MatrixXd t0,
                             int max_iterations) {
   const int k = static_cast<int>(t0.rows());
@@ -282,7 +286,7 @@ LmResult levenbergMarquardt(const ProductObjective& objective, Eigen::MatrixXd t
       }
       lambda *= 10.0;
     }
-    if (!improved || f_prev - f < 1e-7 * f_prev) {
+    if (!improved || f_prev - f < 1e-7 * f_prev || f < kNegligibleObjective) {
       ++it;
       break;
     }
@@ -467,27 +471,30 @@ std::unique_ptr<ComponentwiseModel> trainFactorModel(const Observer& observer,
     throw Error(fmt::format("factor:{}: no sharpening of the training set is finite", k));
   std::sort(finite.begin(), finite.end(),
             [](const auto& a, const auto& b) { return a.first < b.first; });
-  // The objective has many local minima. A scene palette is small enough to refine from every
-  // start and from perturbed copies of the best one; the generic set gets the best start only.
+  // The objective has many local minima. A scene palette is small enough to refine from the
+  // two best starts and a perturbed copy of the best one; the generic set gets the best start
+  // only. Measured on the frog (factor:6): of nine starts (every closed form, six perturbed)
+  // six reached the same minimum, none a lower one, and they took 1.0 s; the best start
+  // converges within 30–130 iterations, so each try has 150.
   constexpr double kMultiStartBudget = 2e5;  // residuals × parameters
   const bool multi_start = double(objective.residuals()) * k * k < kMultiStartBudget;
+  const int max_iterations = multi_start ? 150 : 400;
   std::vector<Start> tries{*finite.front().second};
   if (multi_start) {
-    for (size_t i = 1; i < finite.size(); ++i) tries.push_back(*finite[i].second);
+    if (finite.size() > 1) tries.push_back(*finite[1].second);
     std::mt19937 rng(12345);
     std::normal_distribution<double> noise(0.0, 0.25);
-    for (int p = 1; p <= 6; ++p) {
-      Eigen::MatrixXd t = finite.front().second->t;
-      for (Eigen::Index i = 0; i < t.size(); ++i) t(i) += noise(rng);
-      t.colwise().normalize();
-      tries.push_back({fmt::format("perturbed{}", p), t, finite.front().second->borders});
-    }
+    Eigen::MatrixXd t = finite.front().second->t;
+    for (Eigen::Index i = 0; i < t.size(); ++i) t(i) += noise(rng);
+    t.colwise().normalize();
+    tries.push_back({"perturbed", t, finite.front().second->borders});
   }
   const Start* best = nullptr;
   LmResult lm{Eigen::MatrixXd(), INFINITY, INFINITY, 0};
   for (const auto& st : tries) {
-    LmResult r = levenbergMarquardt(objective, st.t, 400);
+    LmResult r = levenbergMarquardt(objective, st.t, max_iterations);
     if (r.final < lm.final) lm = std::move(r), best = &st;
+    if (lm.final < kNegligibleObjective) break;
   }
   if (!best) throw Error(fmt::format("factor:{}: refinement found no finite model", k));
   rep.start = best->name;

@@ -2,6 +2,8 @@
 
 #include <fmt/format.h>
 
+#include <cmath>
+
 #include "spectral/colorimetry.h"
 #include "spectral/error.h"
 #include "spectral/post_illumination.h"
@@ -10,9 +12,10 @@ namespace svr {
 namespace {
 
 std::vector<float> relitXyz(const LightIndependentImage& image, const ColourModel& model,
-                            const Spectrum& light) {
+                            const Spectrum& light, const std::optional<Spectrum>& background) {
   PostIlluminator post(model);
   post.setLight(light);
+  if (background) post.setBackground(model.project(*background));
   std::vector<float> xyz(3 * image.pixels());
   post.relightLinear(image, xyz, RelitSpace::kXyz);
   return xyz;
@@ -29,14 +32,16 @@ float minTransmittance(const LightIndependentImage& image, int x, int y) {
 
 ImageDifference compareRelit(const LightIndependentImage& a, const ColourModel& model_a,
                              const LightIndependentImage& b, const ColourModel& model_b,
-                             const Spectrum& unit_light, const Xyz& white, double coverage) {
+                             const Spectrum& unit_light, const Xyz& white, double coverage,
+                             const std::optional<Spectrum>& background) {
   if (a.width() != b.width() || a.height() != b.height())
     throw Error(fmt::format("compare: images are {}×{} and {}×{}", a.width(), a.height(),
                             b.width(), b.height()));
   if (a.transmittanceChannels() == 0 || b.transmittanceChannels() == 0)
     throw Error("compare: both images need transmittance channels to tell covered pixels");
-  const auto xa = relitXyz(a, model_a, unit_light);
-  const auto xb = relitXyz(b, model_b, unit_light);
+  const auto xa = relitXyz(a, model_a, unit_light, background);
+  const auto xb = relitXyz(b, model_b, unit_light, background);
+  if (background) coverage = INFINITY;  // the backdrop is part of the picture
   ImageDifference diff;
   diff.map.assign(a.pixels(), 0.0f);
   std::vector<double> values;

@@ -11,7 +11,7 @@
 
 #include "renderers/core/camera.h"
 #include "renderers/core/scene.h"
-#include "renderers/core/scene_model.h"
+#include "renderers/scene_model.h"
 #include "spectral/colorimetry.h"
 #include "spectral/light_independent_image.h"
 

@@ -23,7 +23,7 @@
 #include "renderers/core/memory_budget.h"
 #include "renderers/core/renderer.h"
 #include "renderers/core/scene.h"
-#include "renderers/core/scene_model.h"
+#include "renderers/scene_model.h"
 #include "spectral/colorimetry.h"
 #include "spectral/light_independent_image.h"
 #include "spectral/spectrum_library.h"

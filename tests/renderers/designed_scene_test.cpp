@@ -8,7 +8,7 @@
 
 #include "renderers/core/classification.h"
 #include "renderers/core/scene.h"
-#include "renderers/core/scene_model.h"
+#include "renderers/scene_model.h"
 #include "renderers/registry.h"
 #include "spectral/colour_model.h"
 #include "spectral/design_palette.h"

@@ -10,7 +10,7 @@
 #include <thread>
 
 #include "renderers/core/classification.h"
-#include "renderers/core/scene_model.h"
+#include "renderers/scene_model.h"
 #include "renderers/registry.h"
 #include "spectral/componentwise_model.h"
 #include "spectral/light_mixer.h"

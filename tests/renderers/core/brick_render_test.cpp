@@ -10,7 +10,7 @@
 #include "renderers/core/front_transmittance.h"
 #include "renderers/core/gradient_volume.h"
 #include "renderers/core/image_compositing.h"
-#include "renderers/core/scene_model.h"
+#include "renderers/scene_model.h"
 #include "renderers/core/volume_brick.h"
 #include "renderers/core/work_estimate.h"
 #include "renderers/registry.h"

@@ -3,7 +3,7 @@
 #include <gtest/gtest.h>
 
 #include "renderers/core/classification.h"
-#include "renderers/core/scene_model.h"
+#include "renderers/scene_model.h"
 
 #include <fmt/format.h>
 #include "spectral/componentwise_model.h"

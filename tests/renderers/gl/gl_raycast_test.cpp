@@ -11,7 +11,7 @@
 #include <glm/geometric.hpp>
 
 #include "renderers/core/classification.h"
-#include "renderers/core/scene_model.h"
+#include "renderers/scene_model.h"
 #include "renderers/gl/gl_context.h"
 #include "renderers/gl/gl_renderer.h"
 #include "renderers/raycast/raycast_renderer.h"

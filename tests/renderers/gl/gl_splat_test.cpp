@@ -8,7 +8,7 @@
 
 #include "renderers/core/classification.h"
 #include "renderers/core/procedural_volume.h"
-#include "renderers/core/scene_model.h"
+#include "renderers/scene_model.h"
 #include "renderers/gl/gl_renderer.h"
 #include "renderers/raycast/raycast_renderer.h"
 #include "renderers/core/splat_settings.h"

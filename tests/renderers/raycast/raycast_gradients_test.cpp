@@ -9,7 +9,7 @@
 
 #include "renderers/core/classification.h"
 #include "renderers/core/gradient_volume.h"
-#include "renderers/core/scene_model.h"
+#include "renderers/scene_model.h"
 #include "renderers/core/scene_render.h"
 #include "renderers/raycast/raycast_renderer.h"
 #include "spectral/componentwise_model.h"

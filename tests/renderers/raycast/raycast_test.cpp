@@ -5,7 +5,7 @@
 #include <cmath>
 
 #include "renderers/core/classification.h"
-#include "renderers/core/scene_model.h"
+#include "renderers/scene_model.h"
 #include "renderers/registry.h"
 #include "spectral/componentwise_model.h"
 #include "spectral/error.h"

@@ -7,7 +7,7 @@
 
 #include "renderers/core/classification.h"
 #include "renderers/core/procedural_volume.h"
-#include "renderers/core/scene_model.h"
+#include "renderers/scene_model.h"
 #include "renderers/raycast/raycast_renderer.h"
 #include "renderers/shearwarp/preclassified_axis.h"
 #include "renderers/shearwarp/rle_volume.h"

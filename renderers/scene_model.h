@@ -4,8 +4,12 @@
 //   factor:k          trained on the scene's own palette: its lights × its materials'
 //                     reflectances, with deep products of its absorbers, for full-spectrum
 //                     light matrices (factor:k/projected: for projected ones, the paper's);
-//   auto              the smallest factor k (3..10) whose mean ΔE2000 on that palette, single
-//                     and after 256 absorption steps, stays within the scene's model_target.
+//   auto              the smallest factor k (3..16, full light matrices) whose relit image
+//                     stays within the scene's model_target: a probe render of the scene
+//                     itself (raycast, 96 pixels on the longer side) against spectral:81, the
+//                     worst mean ΔE2000 over every light and mix, backdrop included; spectral:81
+//                     when no k reaches it. (The palette alone misses what the image holds:
+//                     absorbers deep in a volume, a backdrop seen through them.)
 
 #include <cmath>
 #include <memory>
@@ -26,11 +30,12 @@ struct SceneModel {
   // the single-product and 256-step mean ΔE2000); auto also has its target. NaN otherwise.
   double palette_de2000 = NAN;
   double target = NAN;
+  double probe_de2000 = NAN;  // auto: the chosen model's probe error (worst light's mean)
   // Trained models: read from the disk cache (spectral/disk_cache.h) rather than trained now.
   bool cached = false;
 
-  // {"asked", "model", "k", "description", "palette_de2000"?, "target"?, "cached"?} for
-  // render.json and report.json.
+  // {"asked", "model", "k", "description", "palette_de2000"?, "target"?, "probe_de2000"?,
+  // "cached"?} for render.json and report.json.
   nlohmann::json record() const;
 };
 

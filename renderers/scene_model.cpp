@@ -1,10 +1,13 @@
-#include "renderers/core/scene_model.h"
+#include "renderers/scene_model.h"
 
 #include <fmt/format.h>
 
 #include <cmath>
 
+#include "renderers/core/scene_render.h"
+#include "renderers/registry.h"
 #include "spectral/componentwise_model.h"
+#include "spectral/image_difference.h"
 #include "spectral/disk_cache.h"
 #include "spectral/error.h"
 #include "spectral/factor_training.h"
@@ -15,7 +18,8 @@ namespace {
 
 // The scene's palette as an evaluation set: unit-luminance lights × material reflectances;
 // each material's absorber is its own per-step transmission when it absorbs spectrally, else a
-// weak absorber made from another material (so deep products are trained even then).
+// weak absorber made from another material (so deep products are trained even then). A backdrop
+// is a reflectance too, seen through every spectral absorber (the image's T ⊙ b).
 EvaluationSet scenePalette(const Scene& scene, const Observer& observer) {
   std::vector<Spectrum> lights, reflectances;
   for (const auto& l : scene.lights) lights.push_back(observer.unitLuminance(l.spectrum));
@@ -28,7 +32,15 @@ EvaluationSet scenePalette(const Scene& scene, const Observer& observer) {
       const Eigen::VectorXd shape = m.absorption->values() / m.absorption->values().mean();
       set.absorbers[j] = Spectrum(m.reflectance.grid(),
                                   (-step * m.extinction * shape).array().exp().matrix());
+      if (scene.background) {
+        set.reflectances.push_back(*scene.background);
+        set.absorbers.push_back(set.absorbers[j]);
+      }
     }
+  }
+  if (scene.background && set.reflectances.size() == scene.transfer_function.materials.size()) {
+    set.reflectances.push_back(*scene.background);
+    set.absorbers.push_back(weakAbsorber(set.reflectances.front()));
   }
   return set;
 }
@@ -53,7 +65,7 @@ nlohmann::json valuesOf(const std::vector<Spectrum>& spectra) {
 
 // Everything a trained scene model depends on: the name asked for (and auto's target), the
 // observer's weighted colour-matching functions, the grid and the training set's values.
-nlohmann::json modelKey(const std::string& name, double auto_target, const Observer& observer,
+nlohmann::json modelKey(const std::string& name, const Observer& observer,
                         const TrainingSet& training) {
   nlohmann::json key = {
       {"version", kSceneModelVersion},
@@ -64,7 +76,6 @@ nlohmann::json modelKey(const std::string& name, double auto_target, const Obser
       {"absorbers", valuesOf(training.absorbers)},
       {"depths", training.depths},
   };
-  if (name == "auto") key["auto_target"] = auto_target;
   return key;
 }
 
@@ -95,29 +106,95 @@ SceneModel trainSceneModel(const std::string& name, const Scene& scene, const Ob
                        k, training.lights.size(), training.reflectances.size(),
                        toString(light_matrix), error);
   };
-  if (name != "auto") {
-    const int k = parseModelName(name).k;
-    auto model = trainFactorModel(observer, training, k, FactorVariant::kRefined, light_matrix);
-    const double error = worstMean(*model, observer, palette);
-    return {std::move(model), describe(k, error), name, error};
+  const int k = parseModelName(name).k;
+  auto model = trainFactorModel(observer, training, k, FactorVariant::kRefined, light_matrix);
+  const double error = worstMean(*model, observer, palette);
+  return {std::move(model), describe(k, error), name, error};
+}
+
+// auto's probe (issue 19): the scene itself rendered small by the raycaster with spectral:81,
+// the exact product, and each candidate's relit image compared with it under every light and
+// mix, the backdrop included. The probe and the candidates share step, termination and
+// resolution, so what differs is the colour model alone.
+class ModelProbe {
+ public:
+  static constexpr int kLongerSide = 96;
+
+  ModelProbe(const Scene& scene, const Observer& observer) : scene_(scene), observer_(observer) {
+    const double scale = double(kLongerSide) / std::max(scene.width, scene.height);
+    scene_.width = std::max(1, static_cast<int>(std::lround(scene.width * std::min(scale, 1.0))));
+    scene_.height = std::max(1, static_cast<int>(std::lround(scene.height * std::min(scale, 1.0))));
+    for (const auto& l : scene.lights) lights_.push_back(observer.unitLuminance(l.spectrum));
+    const std::size_t singles = lights_.size();
+    for (const auto& mix : scene.mixes) {
+      Spectrum s = Spectrum::constant(observer.grid(), 0.0);
+      for (const auto& [index, w] : mix.weights)
+        if (static_cast<std::size_t>(index) < singles) s = s + lights_[index] * w;
+      lights_.push_back(s);
+    }
+    reference_model_ = makeSpectralModel(observer, observer.grid().count);
+    reference_ = render(*reference_model_);
   }
-  std::unique_ptr<ColourModel> best;
+
+  // The worst over lights and mixes of the mean ΔE2000 against spectral:81.
+  double error(const ColourModel& model) const {
+    const LightIndependentImage image = render(model);
+    double worst = 0.0;
+    for (const auto& light : lights_) {
+      const ImageDifference d = compareRelit(image, model, reference_, *reference_model_, light,
+                                             observer_.xyz(light), 0.98, scene_.background);
+      worst = std::max(worst, d.stats.finite ? d.stats.mean : INFINITY);
+    }
+    return worst;
+  }
+  std::string size() const { return fmt::format("{}×{}", scene_.width, scene_.height); }
+
+ private:
+  LightIndependentImage render(const ColourModel& model) const {
+    const ClassifiedVolume cv = classifyScene(scene_, model);
+    return makeRenderer("raycast")  // the harness's reference backend
+        ->render(sceneRequest(scene_, cv), nullptr);
+  }
+
+  Scene scene_;
+  const Observer& observer_;
+  std::vector<Spectrum> lights_;
+  std::unique_ptr<ColourModel> reference_model_;
+  LightIndependentImage reference_;
+};
+
+// The smallest factor:k (full light matrices) whose probe error is within the scene's target;
+// spectral:81, exact, when none up to factor:16 is.
+SceneModel chooseAutoModel(const Scene& scene, const Observer& observer) {
+  const ModelProbe probe(scene, observer);
   double best_error = INFINITY;
-  for (int k = 3; k <= 10; ++k) {
-    auto model = trainFactorModel(observer, training, k, FactorVariant::kRefined, light_matrix);
-    const double error = worstMean(*model, observer, palette);
-    if (error < best_error) best_error = error, best = std::move(model);
-    if (best_error <= scene.auto_target)
-      return {std::move(best),
-              "auto: " + describe(k, best_error) +
-                  fmt::format(" — the smallest k within {}", scene.auto_target),
-              name, best_error, scene.auto_target};
+  int best_k = 0;
+  std::string trail;  // each candidate's probe error, for the record
+  for (int k = 3; k <= 16; ++k) {
+    SceneModel candidate = makeSceneModel(fmt::format("factor:{}", k), scene, observer);
+    const double error = probe.error(*candidate.model);
+    trail += fmt::format("{}{}: {:.2f}", trail.empty() ? "" : ", ", k, error);
+    if (error < best_error) best_error = error, best_k = k;
+    if (error <= scene.auto_target) {
+      candidate.description =
+          fmt::format("auto: {} — probe render {} mean ΔE2000 {:.3f} (worst light) against "
+                      "spectral:81, the smallest k within {} (k: error {})",
+                      candidate.description, probe.size(), error, scene.auto_target, trail);
+      candidate.asked = "auto";
+      candidate.target = scene.auto_target;
+      candidate.probe_de2000 = error;
+      return candidate;
+    }
   }
-  const int k = best->channels();
-  return {std::move(best),
-          "auto: " + describe(k, best_error) +
-              fmt::format(" — no k ≤ 10 reached {}; the most accurate one", scene.auto_target),
-          name, best_error, scene.auto_target};
+  SceneModel exact{makeSpectralModel(observer, observer.grid().count),
+                   fmt::format("auto: spectral:{} — no factor:k up to 16 reached mean ΔE2000 {} "
+                               "on the probe render {} (closest factor:{}, {:.3f}; k: error {})",
+                               observer.grid().count, scene.auto_target, probe.size(), best_k,
+                               best_error, trail),
+                   "auto"};
+  exact.target = scene.auto_target;
+  exact.probe_de2000 = 0.0;
+  return exact;
 }
 
 }  // namespace
@@ -129,12 +206,14 @@ nlohmann::json SceneModel::record() const {
                       {"description", description}};
   if (std::isfinite(palette_de2000)) j["palette_de2000"] = palette_de2000;
   if (std::isfinite(target)) j["target"] = target;
+  if (std::isfinite(probe_de2000)) j["probe_de2000"] = probe_de2000;
   if (model->name().rfind("factor:", 0) == 0) j["cached"] = cached;
   return j;
 }
 
 SceneModel makeSceneModel(const std::string& name, const Scene& scene, const Observer& observer) {
-  if (name != "auto") {
+  if (name == "auto") return chooseAutoModel(scene, observer);
+  {
     const ModelName parsed = parseModelName(name);
     switch (parsed.kind) {
       case ModelKind::kRgb: return {makeRgbModel(observer), "rgb", name};
@@ -154,7 +233,7 @@ SceneModel makeSceneModel(const std::string& name, const Scene& scene, const Obs
   const TrainingSet training{palette.lights, palette.reflectances, palette.absorbers, {16, 64, 256}};
   // Trained once per palette: a second run of the scene reads the model from the disk cache.
   const DiskCache& cache = DiskCache::process();
-  const nlohmann::json key = modelKey(name, scene.auto_target, observer, training);
+  const nlohmann::json key = modelKey(name, observer, training);
   const DiskCache::Lookup hit = cache.load("model", key);
   if (hit.payload) {
     try {
