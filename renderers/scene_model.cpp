@@ -112,57 +112,6 @@ SceneModel trainSceneModel(const std::string& name, const Scene& scene, const Ob
   return {std::move(model), describe(k, error), name, error};
 }
 
-// auto's probe (issue 19): the scene itself rendered small by the raycaster with spectral:81,
-// the exact product, and each candidate's relit image compared with it under every light and
-// mix, the backdrop included. The probe and the candidates share step, termination and
-// resolution, so what differs is the colour model alone.
-class ModelProbe {
- public:
-  static constexpr int kLongerSide = 96;
-
-  ModelProbe(const Scene& scene, const Observer& observer) : scene_(scene), observer_(observer) {
-    const double scale = double(kLongerSide) / std::max(scene.width, scene.height);
-    scene_.width = std::max(1, static_cast<int>(std::lround(scene.width * std::min(scale, 1.0))));
-    scene_.height = std::max(1, static_cast<int>(std::lround(scene.height * std::min(scale, 1.0))));
-    for (const auto& l : scene.lights) lights_.push_back(observer.unitLuminance(l.spectrum));
-    const std::size_t singles = lights_.size();
-    for (const auto& mix : scene.mixes) {
-      Spectrum s = Spectrum::constant(observer.grid(), 0.0);
-      for (const auto& [index, w] : mix.weights)
-        if (static_cast<std::size_t>(index) < singles) s = s + lights_[index] * w;
-      lights_.push_back(s);
-    }
-    reference_model_ = makeSpectralModel(observer, observer.grid().count);
-    reference_ = render(*reference_model_);
-  }
-
-  // The worst over lights and mixes of the mean ΔE2000 against spectral:81.
-  double error(const ColourModel& model) const {
-    const LightIndependentImage image = render(model);
-    double worst = 0.0;
-    for (const auto& light : lights_) {
-      const ImageDifference d = compareRelit(image, model, reference_, *reference_model_, light,
-                                             observer_.xyz(light), 0.98, scene_.background);
-      worst = std::max(worst, d.stats.finite ? d.stats.mean : INFINITY);
-    }
-    return worst;
-  }
-  std::string size() const { return fmt::format("{}×{}", scene_.width, scene_.height); }
-
- private:
-  LightIndependentImage render(const ColourModel& model) const {
-    const ClassifiedVolume cv = classifyScene(scene_, model);
-    return makeRenderer("raycast")  // the harness's reference backend
-        ->render(sceneRequest(scene_, cv), nullptr);
-  }
-
-  Scene scene_;
-  const Observer& observer_;
-  std::vector<Spectrum> lights_;
-  std::unique_ptr<ColourModel> reference_model_;
-  LightIndependentImage reference_;
-};
-
 // The smallest factor:k (full light matrices) whose probe error is within the scene's target;
 // spectral:81, exact, when none up to factor:16 is.
 SceneModel chooseAutoModel(const Scene& scene, const Observer& observer) {
@@ -198,6 +147,42 @@ SceneModel chooseAutoModel(const Scene& scene, const Observer& observer) {
 }
 
 }  // namespace
+
+ModelProbe::ModelProbe(const Scene& scene, const Observer& observer)
+    : scene_(scene), observer_(observer) {
+  const double scale = std::min(1.0, double(kLongerSide) / std::max(scene.width, scene.height));
+  scene_.width = std::max(1, static_cast<int>(std::lround(scene.width * scale)));
+  scene_.height = std::max(1, static_cast<int>(std::lround(scene.height * scale)));
+  for (const auto& l : scene.lights) lights_.push_back(observer.unitLuminance(l.spectrum));
+  const std::size_t singles = lights_.size();
+  for (const auto& mix : scene.mixes) {
+    Spectrum s = Spectrum::constant(observer.grid(), 0.0);
+    for (const auto& [index, w] : mix.weights)
+      if (static_cast<std::size_t>(index) < singles) s = s + lights_[index] * w;
+    lights_.push_back(s);
+  }
+  reference_model_ = makeSpectralModel(observer, observer.grid().count);
+  reference_ = render(*reference_model_);
+}
+
+double ModelProbe::error(const ColourModel& model) const {
+  const LightIndependentImage image = render(model);
+  double worst = 0.0;
+  for (const auto& light : lights_) {
+    const ImageDifference d = compareRelit(image, model, reference_, *reference_model_, light,
+                                           observer_.xyz(light), 0.98, scene_.background);
+    worst = std::max(worst, d.stats.finite ? d.stats.mean : INFINITY);
+  }
+  return worst;
+}
+
+std::string ModelProbe::size() const { return fmt::format("{}×{}", scene_.width, scene_.height); }
+
+LightIndependentImage ModelProbe::render(const ColourModel& model) const {
+  const ClassifiedVolume cv = classifyScene(scene_, model);
+  // The raycaster: the harness's reference backend.
+  return makeRenderer("raycast")->render(sceneRequest(scene_, cv), nullptr);
+}
 
 nlohmann::json SceneModel::record() const {
   nlohmann::json j = {{"asked", asked},

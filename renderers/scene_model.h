@@ -19,6 +19,7 @@
 #include "renderers/core/scene.h"
 #include "spectral/colorimetry.h"
 #include "spectral/colour_model.h"
+#include "spectral/light_independent_image.h"
 
 namespace svr {
 
@@ -37,6 +38,28 @@ struct SceneModel {
   // {"asked", "model", "k", "description", "palette_de2000"?, "target"?, "probe_de2000"?,
   // "cached"?} for render.json and report.json.
   nlohmann::json record() const;
+};
+
+// auto's probe (issue 19): the scene itself rendered small by the raycaster with spectral:81,
+// the exact product, and a candidate's relit image compared with it under every light and mix,
+// the backdrop included. The probe and the candidates share step, termination and resolution,
+// so what differs is the colour model alone.
+class ModelProbe {
+ public:
+  static constexpr int kLongerSide = 96;
+  ModelProbe(const Scene& scene, const Observer& observer);
+  // The worst over lights and mixes of the mean ΔE2000 against spectral:81.
+  double error(const ColourModel& model) const;
+  std::string size() const;  // "96×96"
+
+ private:
+  LightIndependentImage render(const ColourModel& model) const;
+
+  Scene scene_;
+  const Observer& observer_;
+  std::vector<Spectrum> lights_;
+  std::unique_ptr<ColourModel> reference_model_;
+  LightIndependentImage reference_;
 };
 
 // Trained models are cached on disk, keyed by everything they depend on (DiskCache::process();
