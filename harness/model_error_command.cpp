@@ -46,7 +46,7 @@ nlohmann::json statsJson(const ModelErrorRow& r) {
 void printTable(const std::string& set, const std::vector<ModelErrorRow>& rows,
                 const std::vector<std::string>& order) {
   fmt::print("\nset {}: mean ΔE2000 (p95 and max for the single product)\n", set);
-  fmt::print("{:<24} {:>8} {:>8} {:>8} {:>9} {:>9} {:>9} {:>9}  {}\n", "model", "product", "p95",
+  fmt::print("{:<28} {:>8} {:>8} {:>8} {:>9} {:>9} {:>9} {:>9}  {}\n", "model", "product", "p95",
              "max", "absorb4", "absorb16", "absorb64", "absorb256", "finite");
   std::map<std::string, std::map<std::string, const ModelErrorRow*>> by_model;
   for (const auto& r : rows)
@@ -63,7 +63,7 @@ void printTable(const std::string& set, const std::vector<ModelErrorRow>& rows,
     auto& c = it->second;
     bool finite = true;
     for (auto& [k, r] : c) finite = finite && r->stats.finite;
-    fmt::print("{:<24} {:>8} {:>8} {:>8} {:>9} {:>9} {:>9} {:>9}  {}\n", name,
+    fmt::print("{:<28} {:>8} {:>8} {:>8} {:>9} {:>9} {:>9} {:>9}  {}\n", name,
                cell(c["product"], &ErrorStats::mean), cell(c["product"], &ErrorStats::p95),
                cell(c["product"], &ErrorStats::max), cell(c["absorb4"], &ErrorStats::mean),
                cell(c["absorb16"], &ErrorStats::mean), cell(c["absorb64"], &ErrorStats::mean),
