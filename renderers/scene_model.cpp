@@ -63,8 +63,8 @@ nlohmann::json valuesOf(const std::vector<Spectrum>& spectra) {
   return out;
 }
 
-// Everything a trained scene model depends on: the name asked for (and auto's target), the
-// observer's weighted colour-matching functions, the grid and the training set's values.
+// Everything a trained scene model depends on: the name asked for, the observer's weighted
+// colour-matching functions, the grid and the training set's values.
 nlohmann::json modelKey(const std::string& name, const Observer& observer,
                         const TrainingSet& training) {
   nlohmann::json key = {
@@ -98,10 +98,9 @@ nlohmann::json toCache(const SceneModel& m) {
 
 SceneModel trainSceneModel(const std::string& name, const Scene& scene, const Observer& observer,
                            const EvaluationSet& palette, const TrainingSet& training) {
-  const LightMatrixKind light_matrix =
-      name == "auto" ? LightMatrixKind::kFull : parseModelName(name).light_matrix;
+  const LightMatrixKind light_matrix = parseModelName(name).light_matrix;
   auto describe = [&](int k, double error) {
-    return fmt::format("factor:{} trained on the scene palette ({} lights × {} materials, {} "
+    return fmt::format("factor:{} trained on the scene palette ({} lights × {} reflectances, {} "
                        "light matrices; mean ΔE2000 {:.3f} single/deep)",
                        k, training.lights.size(), training.reflectances.size(),
                        toString(light_matrix), error);
