@@ -237,7 +237,7 @@ CommandEntry model_error() {
                            "reflectance names, or 'munsell' / 'colorchecker', as the test set")
                 ->delimiter(',');
             sub.add_option("--palette", o->palette,
-                           "palette or scene JSON: train and test on its own lights × materials")
+                           "palette JSON (data/palettes/): train and test on its own lights × materials")
                 ->check(CLI::ExistingFile);
             sub.add_option("--json", o->json_path, "write every row as JSON to this file");
             sub.add_option("--kmin", o->k_min, "smallest k")->capture_default_str();
