@@ -71,13 +71,12 @@ ComparisonSession::ComparisonSession(Scene scene, const std::string& data_dir)
     : scene_(std::move(scene)),
       library_(SpectrumLibrary::load(data_dir, WavelengthGrid::standard())),
       observer_(Observer::cie1931(data_dir, WavelengthGrid::standard())) {
-  for (const auto& l : scene_.lights)
-    illuminations_.push_back({l.name, observer_.unitLuminance(l.spectrum)});
-  for (const auto& mix : scene_.mixes) {
-    Spectrum s = Spectrum::constant(observer_.grid(), 0.0);
-    for (const auto& [index, w] : mix.weights) s = s + illuminations_[index].spectrum * w;
-    illuminations_.push_back({fmt::format("mix {}", mix.name), s});
-  }
+  const std::vector<Spectrum> spectra = sceneIlluminations(scene_, observer_);
+  for (std::size_t i = 0; i < spectra.size(); ++i)
+    illuminations_.push_back({i < scene_.lights.size()
+                                  ? scene_.lights[i].name
+                                  : fmt::format("mix {}", scene_.mixes[i - scene_.lights.size()].name),
+                              spectra[i]});
   const Reference reference;
   Rendered ref = render(reference.renderer, reference.model(), nlohmann::json::object(),
                         reference.stepVoxels(scene_), reference.termination);

@@ -60,23 +60,14 @@ struct RelitOutput {
   std::vector<std::uint8_t> rgb;
 };
 
-// Σ w · light over a mix's (light index, weight) pairs: light matrices are linear in the light.
-Spectrum mixSpectra(const std::vector<Spectrum>& lights,
-                    const std::vector<std::pair<int, double>>& weights) {
-  Spectrum mix = Spectrum::constant(lights.front().grid(), 0.0);
-  for (const auto& [index, w] : weights) mix = mix + lights[index] * w;
-  return mix;
-}
-
 std::vector<RelitOutput> sceneOutputs(const Scene& scene, const Observer& observer) {
-  std::vector<Spectrum> unit;
-  for (const auto& l : scene.lights) unit.push_back(observer.unitLuminance(l.spectrum));
+  const std::vector<Spectrum> spectra = sceneIlluminations(scene, observer);
   std::vector<RelitOutput> outputs;
   for (size_t i = 0; i < scene.lights.size(); ++i)
-    outputs.push_back({scene.lights[i].name, fileStem(scene.lights[i].name) + ".png", unit[i], {}});
-  for (const auto& mix : scene.mixes)
-    outputs.push_back({mix.name, "mix_" + fileStem(mix.name) + ".png",
-                       mixSpectra(unit, mix.weights), {}});
+    outputs.push_back({scene.lights[i].name, fileStem(scene.lights[i].name) + ".png", spectra[i], {}});
+  for (size_t m = 0; m < scene.mixes.size(); ++m)
+    outputs.push_back({scene.mixes[m].name, "mix_" + fileStem(scene.mixes[m].name) + ".png",
+                       spectra[scene.lights.size() + m], {}});
   return outputs;
 }
 

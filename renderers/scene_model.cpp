@@ -152,14 +152,7 @@ ModelProbe::ModelProbe(const Scene& scene, const Observer& observer)
   const double scale = std::min(1.0, double(kLongerSide) / std::max(scene.width, scene.height));
   scene_.width = std::max(1, static_cast<int>(std::lround(scene.width * scale)));
   scene_.height = std::max(1, static_cast<int>(std::lround(scene.height * scale)));
-  for (const auto& l : scene.lights) lights_.push_back(observer.unitLuminance(l.spectrum));
-  const std::size_t singles = lights_.size();
-  for (const auto& mix : scene.mixes) {
-    Spectrum s = Spectrum::constant(observer.grid(), 0.0);
-    for (const auto& [index, w] : mix.weights)
-      if (static_cast<std::size_t>(index) < singles) s = s + lights_[index] * w;
-    lights_.push_back(s);
-  }
+  lights_ = sceneIlluminations(scene, observer);
   reference_model_ = makeSpectralModel(observer, observer.grid().count);
   reference_ = render(*reference_model_);
 }
@@ -197,21 +190,19 @@ nlohmann::json SceneModel::record() const {
 
 SceneModel makeSceneModel(const std::string& name, const Scene& scene, const Observer& observer) {
   if (name == "auto") return chooseAutoModel(scene, observer);
-  {
-    const ModelName parsed = parseModelName(name);
-    switch (parsed.kind) {
-      case ModelKind::kRgb: return {makeRgbModel(observer), "rgb", name};
-      case ModelKind::kSpectral:
-        return {makeSpectralModel(observer, parsed.k, parsed.light_matrix),
-                fmt::format("spectral:{} ({} bands of the {}-sample grid, {} light matrices)",
-                            parsed.k, parsed.k, observer.grid().count,
-                            toString(parsed.light_matrix)),
-                name};
-      case ModelKind::kLinear:
-        throw Error(fmt::format("{}: linear:k has no componentwise product; the renderers take "
-                                "rgb, factor:k, spectral:n or auto", scene.file));
-      case ModelKind::kFactor: break;
-    }
+  const ModelName parsed = parseModelName(name);
+  switch (parsed.kind) {
+    case ModelKind::kRgb: return {makeRgbModel(observer), "rgb", name};
+    case ModelKind::kSpectral:
+      return {makeSpectralModel(observer, parsed.k, parsed.light_matrix),
+              fmt::format("spectral:{} ({} bands of the {}-sample grid, {} light matrices)",
+                          parsed.k, parsed.k, observer.grid().count,
+                          toString(parsed.light_matrix)),
+              name};
+    case ModelKind::kLinear:
+      throw Error(fmt::format("{}: linear:k has no componentwise product; the renderers take "
+                              "rgb, factor:k, spectral:n or auto", scene.file));
+    case ModelKind::kFactor: break;
   }
   const EvaluationSet palette = scenePalette(scene, observer);
   const TrainingSet training{palette.lights, palette.reflectances, palette.absorbers, {16, 64, 256}};

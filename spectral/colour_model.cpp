@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include <charconv>
+#include <optional>
 #include <nlohmann/json.hpp>
 
 #include "spectral/atomic_file.h"
@@ -27,6 +28,17 @@ std::string toString(ModelKind kind) {
 std::string toString(LightMatrixKind kind) {
   return kind == LightMatrixKind::kFull ? "full" : "projected";
 }
+
+namespace {
+
+// "full" or "projected"; nothing for any other text.
+std::optional<LightMatrixKind> lightMatrixFromString(const std::string& text) {
+  for (auto kind : {LightMatrixKind::kFull, LightMatrixKind::kProjected})
+    if (toString(kind) == text) return kind;
+  return std::nullopt;
+}
+
+}  // namespace
 
 std::string ModelName::str() const {
   const std::string base = kind == ModelKind::kRgb ? "rgb" : fmt::format("{}:{}", toString(kind), k);
@@ -71,18 +83,16 @@ ModelName parseModelName(const std::string& text) {
   ModelName name = parseBaseName(text.substr(0, slash));
   if (slash == std::string::npos) return name;
   const std::string matrix = text.substr(slash + 1);
-  if (matrix == "projected") {
-    name.light_matrix = LightMatrixKind::kProjected;
-  } else if (matrix == "full") {
-    if (name.kind == ModelKind::kRgb || name.kind == ModelKind::kLinear)
-      throw Error(fmt::format("colour model '{}': {} has no spectral basis for full-spectrum "
-                              "light matrices; it relights projected only",
-                              text, toString(name.kind)));
-    name.light_matrix = LightMatrixKind::kFull;
-  } else {
+  const std::optional<LightMatrixKind> kind = lightMatrixFromString(matrix);
+  if (!kind)
     throw Error(fmt::format("colour model '{}': light matrix '{}' is not 'full' or 'projected'",
                             text, matrix));
-  }
+  if (*kind == LightMatrixKind::kFull &&
+      (name.kind == ModelKind::kRgb || name.kind == ModelKind::kLinear))
+    throw Error(fmt::format("colour model '{}': {} has no spectral basis for full-spectrum "
+                            "light matrices; it relights projected only",
+                            text, toString(name.kind)));
+  name.light_matrix = *kind;
   return name;
 }
 
@@ -132,9 +142,10 @@ std::unique_ptr<ColourModel> modelFromJson(const nlohmann::json& j, const std::s
     // Files written before full-spectrum light matrices existed name no light matrix and were
     // all projected.
     const std::string matrix = j.value("light_matrix", "projected");
-    if (matrix != "full" && matrix != "projected")
+    const std::optional<LightMatrixKind> kind = lightMatrixFromString(matrix);
+    if (!kind)
       throw Error(fmt::format("{}: light_matrix '{}' is not 'full' or 'projected'", source, matrix));
-    name.light_matrix = matrix == "full" ? LightMatrixKind::kFull : LightMatrixKind::kProjected;
+    name.light_matrix = *kind;
     const auto& g = j.at("grid");
     WavelengthGrid grid{g.at("start_nm").get<double>(), g.at("step_nm").get<double>(),
                         g.at("count").get<int>()};

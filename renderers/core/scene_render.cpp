@@ -28,4 +28,15 @@ RenderRequest sceneRequest(const Scene& scene, const ClassifiedVolume& classifie
                        .note = nullptr};
 }
 
+std::vector<Spectrum> sceneIlluminations(const Scene& scene, const Observer& observer) {
+  std::vector<Spectrum> out;
+  for (const auto& l : scene.lights) out.push_back(observer.unitLuminance(l.spectrum));
+  for (const auto& mix : scene.mixes) {
+    Spectrum s = Spectrum::constant(observer.grid(), 0.0);
+    for (const auto& [index, w] : mix.weights) s = s + out[index] * w;
+    out.push_back(s);
+  }
+  return out;
+}
+
 }  // namespace svr

@@ -8,6 +8,7 @@
 #include "renderers/core/classification.h"
 #include "renderers/core/renderer.h"
 #include "renderers/core/scene.h"
+#include "spectral/colorimetry.h"
 #include "spectral/colour_model.h"
 
 namespace svr {
@@ -17,5 +18,9 @@ ClassifiedVolume classifyScene(const Scene& scene, const ColourModel& model);
 
 // The request for this scene (options_source names the scene file's render.options).
 RenderRequest sceneRequest(const Scene& scene, const ClassifiedVolume& classified);
+
+// What the scene is relit under: each light at unit luminance, then each mix as the weighted
+// sum of those (light matrices are linear in the light), in scene.lights then scene.mixes order.
+std::vector<Spectrum> sceneIlluminations(const Scene& scene, const Observer& observer);
 
 }  // namespace svr

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include "renderers/core/classification.h"
+#include "renderers/core/scene_render.h"
 #include "renderers/scene_model.h"
 
 #include <fmt/format.h>
@@ -131,14 +132,7 @@ TEST(SceneModel, AutoHoldsItsTargetOnABackdropSeenThroughBlood) {
   const auto exact = makeSpectralModel(test::rendererObserver(), 81);
   const auto reference = test::render(RaycastRenderer(), s, *exact);
   const auto image = test::render(RaycastRenderer(), s, *chosen.model);
-  std::vector<Spectrum> lights;
-  for (const auto& l : s.lights) lights.push_back(test::rendererObserver().unitLuminance(l.spectrum));
-  for (const auto& mix : s.mixes) {
-    Spectrum m = Spectrum::constant(lights.front().grid(), 0.0);
-    for (const auto& [index, w] : mix.weights) m = m + lights[index] * w;
-    lights.push_back(m);
-  }
-  for (const auto& light : lights) {
+  for (const Spectrum& light : sceneIlluminations(s, test::rendererObserver())) {
     const ImageDifference d = compareRelit(image, *chosen.model, reference, *exact, light,
                                            test::rendererObserver().xyz(light), 0.98,
                                            s.background);
