@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include "renderers/core/scene_render.h"
@@ -16,32 +17,43 @@
 namespace svr {
 namespace {
 
-// The scene's palette as an evaluation set: unit-luminance lights × material reflectances;
-// each material's absorber is its own per-step transmission when it absorbs spectrally, else a
-// weak absorber made from another material (so deep products are trained even then). A backdrop
-// is a reflectance too, seen through every spectral absorber (the image's T ⊙ b).
+// The scene's palette as an evaluation set: what the light-independent image holds, under the
+// scene's lights at unit luminance. That is each material's reflectance, seen through its own
+// absorber where it absorbs spectrally (deep products R ⊙ t^m, t its per-step transmission),
+// and the flat white of the specular term (where a material has one) and the backdrop, each
+// seen through every spectral absorber (the image's T ⊙ b). A material that absorbs
+// achromatically pairs with the flat transmission 1, whose deep products are the single ones
+// again; where every material does, T is a scalar (classification.h) that never enters a
+// componentwise product, and a model needs to span only the reflectances.
 EvaluationSet scenePalette(const Scene& scene, const Observer& observer) {
-  std::vector<Spectrum> lights, reflectances;
+  const auto& materials = scene.transfer_function.materials;
+  const WavelengthGrid& grid = observer.grid();
+  const Spectrum flat(grid, Eigen::VectorXd::Ones(grid.count));
+  std::vector<Spectrum> lights, seen_through, spectral_absorbers;
   for (const auto& l : scene.lights) lights.push_back(observer.unitLuminance(l.spectrum));
-  for (const auto& m : scene.transfer_function.materials) reflectances.push_back(m.reflectance);
-  EvaluationSet set = makeEvaluationSet("palette", lights, reflectances, 1);
+  if (std::any_of(materials.begin(), materials.end(),
+                  [](const Material& m) { return m.specular > 0; }))
+    seen_through.push_back(flat);
+  if (scene.background) seen_through.push_back(*scene.background);
+
+  EvaluationSet set{"palette", std::move(lights), {}, {}};
+  auto add = [&](const Spectrum& reflectance, const Spectrum& absorber) {
+    set.reflectances.push_back(reflectance);
+    set.absorbers.push_back(absorber);
+  };
   const double step = scene.stepWorld();
-  for (size_t j = 0; j < scene.transfer_function.materials.size(); ++j) {
-    const Material& m = scene.transfer_function.materials[j];
-    if (m.absorption && m.extinction > 0) {
-      const Eigen::VectorXd shape = m.absorption->values() / m.absorption->values().mean();
-      set.absorbers[j] = Spectrum(m.reflectance.grid(),
-                                  (-step * m.extinction * shape).array().exp().matrix());
-      if (scene.background) {
-        set.reflectances.push_back(*scene.background);
-        set.absorbers.push_back(set.absorbers[j]);
-      }
+  for (const Material& m : materials) {
+    if (!m.absorption || m.extinction <= 0) {
+      add(m.reflectance, flat);
+      continue;
     }
+    const Eigen::VectorXd shape = m.absorption->values() / m.absorption->values().mean();
+    spectral_absorbers.emplace_back(grid, (-step * m.extinction * shape).array().exp().matrix());
+    add(m.reflectance, spectral_absorbers.back());
   }
-  if (scene.background && set.reflectances.size() == scene.transfer_function.materials.size()) {
-    set.reflectances.push_back(*scene.background);
-    set.absorbers.push_back(weakAbsorber(set.reflectances.front()));
-  }
+  if (spectral_absorbers.empty()) spectral_absorbers.push_back(flat);
+  for (const auto& t : spectral_absorbers)
+    for (const auto& s : seen_through) add(s, t);
   return set;
 }
 
@@ -55,7 +67,7 @@ double worstMean(const ColourModel& model, const Observer& observer, const Evalu
 
 // Bump when training, its objective, its defaults or the auto rule change: models cached by an
 // older version are then rebuilt rather than reused.
-constexpr int kSceneModelVersion = 2;  // 2: full-spectrum light matrices
+constexpr int kSceneModelVersion = 3;  // 3: palettes of what the image holds
 
 nlohmann::json valuesOf(const std::vector<Spectrum>& spectra) {
   nlohmann::json out = nlohmann::json::array();
@@ -205,7 +217,10 @@ SceneModel makeSceneModel(const std::string& name, const Scene& scene, const Obs
     case ModelKind::kFactor: break;
   }
   const EvaluationSet palette = scenePalette(scene, observer);
-  const TrainingSet training{palette.lights, palette.reflectances, palette.absorbers, {16, 64, 256}};
+  // Deep products of the flat transmission are the single products again: trained once.
+  const std::vector<int> depths =
+      scene.transfer_function.achromatic() ? std::vector<int>{} : std::vector<int>{16, 64, 256};
+  const TrainingSet training{palette.lights, palette.reflectances, palette.absorbers, depths};
   // Trained once per palette: a second run of the scene reads the model from the disk cache.
   const DiskCache& cache = DiskCache::process();
   const nlohmann::json key = modelKey(name, observer, training);
