@@ -24,14 +24,19 @@ namespace {
 // seen through every spectral absorber (the image's T ⊙ b). A material that absorbs
 // achromatically pairs with the flat transmission 1, whose deep products are the single ones
 // again; where every material does, T is a scalar (classification.h) that never enters a
-// componentwise product, and a model needs to span only the reflectances.
-EvaluationSet scenePalette(const Scene& scene, const Observer& observer) {
+// componentwise product, and a model needs to span only the reflectances. The white enters
+// only for full light matrices: projected ones relight it as the light's own coefficients
+// (P·L), and their span is the paper's, of light × material signals, which a designed palette's
+// projection term was fitted to; taking the lights' own signals too costs those materials more.
+EvaluationSet scenePalette(const Scene& scene, const Observer& observer,
+                           LightMatrixKind light_matrix) {
   const auto& materials = scene.transfer_function.materials;
   const WavelengthGrid& grid = observer.grid();
   const Spectrum flat(grid, Eigen::VectorXd::Ones(grid.count));
   std::vector<Spectrum> lights, seen_through, spectral_absorbers;
   for (const auto& l : scene.lights) lights.push_back(observer.unitLuminance(l.spectrum));
-  if (std::any_of(materials.begin(), materials.end(),
+  if (light_matrix == LightMatrixKind::kFull &&
+      std::any_of(materials.begin(), materials.end(),
                   [](const Material& m) { return m.specular > 0; }))
     seen_through.push_back(flat);
   if (scene.background) seen_through.push_back(*scene.background);
@@ -216,7 +221,7 @@ SceneModel makeSceneModel(const std::string& name, const Scene& scene, const Obs
                               "rgb, factor:k, spectral:n or auto", scene.file));
     case ModelKind::kFactor: break;
   }
-  const EvaluationSet palette = scenePalette(scene, observer);
+  const EvaluationSet palette = scenePalette(scene, observer, parsed.light_matrix);
   // Deep products of the flat transmission are the single products again: trained once.
   const std::vector<int> depths =
       scene.transfer_function.achromatic() ? std::vector<int>{} : std::vector<int>{16, 64, 256};

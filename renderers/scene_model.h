@@ -1,9 +1,11 @@
 #pragma once
 // The colour model a scene renders with — "model no more than a scene needs" (DESIGN §4):
 //   rgb, spectral:n   fixed models;
-//   factor:k          trained on the scene's own palette: its lights × its materials'
-//                     reflectances, with deep products of its absorbers, for full-spectrum
-//                     light matrices (factor:k/projected: for projected ones, the paper's);
+//   factor:k          trained on the scene's own palette, what its image holds: its lights ×
+//                     its materials' reflectances, the specular white and the backdrop, with
+//                     deep products through its spectral absorbers (none where all absorb
+//                     achromatically), for full-spectrum light matrices (factor:k/projected:
+//                     for projected ones, the paper's, without the white);
 //   auto              the smallest factor k (3..16, full light matrices) whose relit image
 //                     stays within the scene's model_target: a probe render of the scene
 //                     itself (raycast, 96 pixels on the longer side) against spectral:81, the
