@@ -8,10 +8,12 @@
 #include <bit>
 #include <cstdint>
 
+#include "renderers/core/fast_exp.h"
+
 namespace svr {
 
-// The polynomials are evaluated in Estrin's scheme (powers of u and f in parallel), which keeps
-// the dependency chain short: Horner's twelve dependent multiply-adds cost more than libm.
+// The log2 polynomial is evaluated in Estrin's scheme (powers of u in parallel), like fastExp2's,
+// which keeps the dependency chain short: Horner's dependent multiply-adds cost more than libm.
 [[gnu::always_inline]] inline float unitPower(float x, float s) {
   if (!(x > 0.f)) return s > 0.f ? 0.f : 1.f;
   // log2 x = e + log2 m, m in [1, 2).
@@ -23,14 +25,7 @@ namespace svr {
                            u2 * (0.472893375f + u * -0.324294866f) +
                            u4 * ((0.192307104f + u * -0.0783569111f) + u2 * 0.0152510467f));
   const float y = s * (static_cast<float>(e) + log2m);  // ≤ 0 for x ≤ 1
-  if (y < -126.f) return 0.f;
-  // 2^y = 2^n · 2^f, n = ⌊y⌋, f in [0, 1).
-  const int n = static_cast<int>(y) - (y < static_cast<float>(static_cast<int>(y)));
-  const float f = y - static_cast<float>(n);
-  const float f2 = f * f, f4 = f2 * f2;
-  const float p = (0.99999977f + f * 0.693156777f) + f2 * (0.240131692f + f * 0.0558765569f) +
-                  f4 * (0.00894058253f + f * 0.00189437942f);
-  return p * std::bit_cast<float>(static_cast<std::uint32_t>(n + 127) << 23);
+  return fastExp2(y);
 }
 
 }  // namespace svr

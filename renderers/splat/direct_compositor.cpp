@@ -6,6 +6,7 @@
 #include <atomic>
 #include <cmath>
 
+#include "renderers/core/fast_exp.h"
 #include "renderers/splat/band_state.h"
 
 namespace svr::splat {
@@ -29,24 +30,31 @@ void compositeBand(const SplatList& list, const FootprintTable& table,
     ya = std::max(ya, y0);
     if (xa > xb || ya > yb || state.columnsDone(xa, xb)) continue;
     list.coefficients(s, coef);
+    bool attenuates = false;
+    for (int c = 0; c < kt; ++c) attenuates = attenuates || sigma_t[c] > 0.f;
+    // One exponential where the splat attenuates as it scatters (not x-ray, achromatic).
+    const bool same = kt == 1 && sigma_t[0] == coef.sigma_alpha;
     for (int y = ya; y <= yb; ++y) {
       const float dy = y + 0.5f - s.y;
+      const float qy = fp.c * dy * dy, bxy = 2.f * fp.b * dy;
       for (int x = xa; x <= xb; ++x) {
         const float dx = x + 0.5f - s.x;
-        const float q = fp.a * dx * dx + 2.f * fp.b * dx * dy + fp.c * dy * dy;
+        const float q = (fp.a * dx + bxy) * dx + qy;
         if (q >= cut2 || state.done(x, y)) continue;
         const float length = fp.norm * table.gaussian(q);  // world length of kernel on the ray
         const std::size_t p = state.pixel(x, y);
-        const float alpha = -std::expm1(-coef.sigma_alpha * length);
+        const float kept = fastExp(-coef.sigma_alpha * length);
+        const float alpha = 1.f - kept;
         for (int c = 0; c < k; ++c)
           state.scattered(c)[p] += state.transmittance(kt > 1 ? c : 0)[p] * alpha * colour[c];
-        bool attenuated = false;
-        for (int c = 0; c < kt; ++c)
-          if (sigma_t[c] > 0.f) {
-            state.transmittance(c)[p] *= std::exp(-sigma_t[c] * length);
-            attenuated = true;
-          }
-        if (attenuated) state.update(x, y);
+        if (!attenuates) continue;
+        if (same) {
+          state.transmittance(0)[p] *= kept;
+        } else {
+          for (int c = 0; c < kt; ++c)
+            if (sigma_t[c] > 0.f) state.transmittance(c)[p] *= fastExp(-sigma_t[c] * length);
+        }
+        state.update(x, y);
       }
     }
   }

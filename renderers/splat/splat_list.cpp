@@ -10,6 +10,87 @@
 
 namespace svr::splat {
 
+namespace {
+
+struct VoxelShade {
+  float shade, highlight;
+};
+
+// The shade of every listed voxel, in list (voxel index) order: the mean of the Phong terms at
+// the cell's 8 corners — the raycaster's Phong at the dual-grid nodes — not the shade at its
+// centre (near a boundary those differ, and the centre alone is too bright). The list is cut into
+// runs of whole z-slices. Under an orthographic camera every node has one Phong value per frame,
+// and a run keeps the values of its two current node planes (slot z & 1, stamped with z), so a
+// node shared by up to 8 voxels is shaded once per run; in index order the cell means are read
+// nearly in sequence. A perspective camera's view direction differs per voxel, and each voxel
+// shades its own corners.
+std::vector<VoxelShade> shadeVoxels(const SplatVoxels& sv, const ClassifiedVolume& cv,
+                                    const RenderRequest& req, const Projector& projector,
+                                    bool any_specular) {
+  const auto voxels = sv.voxels();
+  const Dims& d = cv.dims;
+  const bool ortho = projector.orthographic();
+  std::vector<VoxelShade> out(voxels.size());
+  const auto setupAt = [&](std::uint32_t index) {
+    const glm::dvec3 view = projector.towardsEye(voxelWorld(cv, index));
+    const glm::dvec3 light = req.light_direction ? *req.light_direction : view;
+    PhongSetup setup(req.shading, light, glm::normalize(light + view));
+    if (!any_specular) setup.specular = 0.f;
+    return setup;
+  };
+  constexpr int kSlicesPerRun = 8;
+  const int runs = (d[2] + kSlicesPerRun - 1) / kSlicesPerRun;
+  const std::size_t plane = static_cast<std::size_t>(d[0] + 1) * (d[1] + 1);
+  const std::size_t slice = static_cast<std::size_t>(d[0]) * d[1];
+  const auto firstAtOrAfter = [&](int z) {
+    return static_cast<std::size_t>(
+        std::lower_bound(voxels.begin(), voxels.end(), slice * z,
+                         [](const SplatVoxel& v, std::size_t i) { return v.index < i; }) -
+        voxels.begin());
+  };
+#pragma omp parallel
+  {
+    std::vector<PhongTerms> node_terms(ortho ? 2 * plane : 0);
+    std::vector<int> stamp(ortho ? 2 * plane : 0);
+#pragma omp for schedule(dynamic)
+    for (int run = 0; run < runs; ++run) {
+      std::fill(stamp.begin(), stamp.end(), -1);
+      PhongSetup setup = setupAt(0);
+      const std::size_t end = firstAtOrAfter(std::min(d[2], (run + 1) * kSlicesPerRun));
+      for (std::size_t i = firstAtOrAfter(run * kSlicesPerRun); i < end; ++i) {
+        const std::uint32_t index = voxels[i].index;
+        const int x = static_cast<int>(index % d[0]);
+        const int y = static_cast<int>(index / d[0] % d[1]);
+        const int z = static_cast<int>(index / slice);
+        if (!ortho) setup = setupAt(index);
+        float shade = 0.f, highlight = 0.f;
+        for (int c = 0; c < 8; ++c) {
+          const int nx = x + (c & 1), ny = y + ((c >> 1) & 1), nz = z + ((c >> 2) & 1);
+          PhongTerms t;
+          const std::size_t at = (nz & 1) * plane + static_cast<std::size_t>(ny) * (d[0] + 1) + nx;
+          if (ortho && stamp[at] == nz) {
+            t = node_terms[at];
+          } else {
+            float g[3];
+            sv.gradientAtNode(nx, ny, nz, g);
+            t = phong(setup, g);
+            if (ortho) {
+              node_terms[at] = t;
+              stamp[at] = nz;
+            }
+          }
+          shade += t.shade;
+          highlight += t.highlight;
+        }
+        out[i] = {shade * 0.125f, highlight * 0.125f};
+      }
+    }
+  }
+  return out;
+}
+
+}  // namespace
+
 SplatList::SplatList(const ClassifiedVolume& cv, const RenderRequest& req,
                      const Projector& projector)
     : cv_(cv), voxels_(SplatVoxels::of(cv)), k_(cv.k), kt_(cv.t_channels) {
@@ -18,32 +99,14 @@ SplatList::SplatList(const ClassifiedVolume& cv, const RenderRequest& req,
   const bool any_specular = req.shading.specular > 0.0 &&
                             std::any_of(cv.specular.begin(), cv.specular.end(),
                                         [](float s) { return s > 0.f; });
-  const Dims& d = cv.dims;
+  const std::vector<VoxelShade> shades = shadeVoxels(*voxels_, cv, req, projector, any_specular);
   const std::size_t n = projected.ids.size();
   splats_.resize(n);
-#pragma omp parallel for schedule(dynamic, 4096)
+#pragma omp parallel for schedule(static)
   for (std::size_t i = 0; i < n; ++i) {
-    const SplatVoxel& voxel = voxels[projected.ids[i]];
-    const int x = static_cast<int>(voxel.index % d[0]);
-    const int y = static_cast<int>(voxel.index / d[0] % d[1]);
-    const int z = static_cast<int>(voxel.index / d[0] / d[1]);
-    // The splat carries its kernel's worth of emission, so its shade is the mean of the
-    // shade over the voxel's cell — the raycaster's Phong at the cell's 8 corners — not the
-    // shade at its centre: near a boundary those differ, and the centre alone is too bright.
-    const glm::dvec3 view = projector.towardsEye(voxelWorld(cv, voxel.index));
-    const glm::dvec3 light = req.light_direction ? *req.light_direction : view;
-    PhongSetup setup(req.shading, light, glm::normalize(light + view));
-    if (!any_specular) setup.specular = 0.f;
-    float shade = 0.f, highlight = 0.f;
-    for (int c = 0; c < 8; ++c) {
-      float g[3];
-      voxels_->gradientAtNode(x + (c & 1), y + ((c >> 1) & 1), z + ((c >> 2) & 1), g);
-      const PhongTerms t = phong(setup, g);
-      shade += t.shade;
-      highlight += t.highlight;
-    }
+    const std::uint32_t id = projected.ids[i];
     splats_[i] = {projected.position[i].x, projected.position[i].y, projected.depth[i],
-                  voxel.entry, voxel.frac, shade * 0.125f, highlight * 0.125f};
+                  voxels[id].entry, voxels[id].frac, shades[id].shade, shades[id].highlight};
   }
   footprints_ = std::move(projected.footprints);
   for (const Footprint& fp : footprints_) max_depth_sigma_ = std::max(max_depth_sigma_, fp.depth_sigma);
