@@ -42,9 +42,6 @@ class BandState {
   float* scattered(int c) { return out_ + c * pixels_; }
   float* transmittance(int c) { return out_ + (k_ + c) * pixels_; }
   bool done(int x, int y) const { return done_[static_cast<std::size_t>(y - y0_) * width_ + x]; }
-  const std::uint8_t* doneRow(int y) const {
-    return done_.data() + static_cast<std::size_t>(y - y0_) * width_;
-  }
   bool allDone() const { return live_ == 0; }
   // True when every pixel in columns [x0, x1] of this band is finished.
   bool columnsDone(int x0, int x1) const {

@@ -6,14 +6,60 @@
 #include <atomic>
 #include <cmath>
 
+#include "renderers/core/fast_exp.h"
 #include "renderers/splat/band_state.h"
 
 namespace svr::splat {
 namespace {
 
+// A splat while its kernel reaches the current sheet: its footprint box within the band, the
+// kernel's world length at each pixel of the box (0 outside the footprint), computed once when
+// it becomes active rather than on each of the 4–5 sheets it reaches, and its coefficients.
+struct ActiveSplat {
+  int xa, xb, ya, yb;
+  std::size_t weights;  // offset of the box's (xb − xa + 1)(yb − ya + 1) lengths in the pool
+  std::size_t coefs;    // offset of sigma_alpha, kt sigma_t, k colour in the pool
+};
+
+// Composite the sheet like one raycast sample: α = 1 − exp(−τ), colour = E / τ; the pixels
+// are then cleared for the next sheet. (Extinctions are never negative, so a pixel with no
+// optical depth holds no colour either.)
+void compositeSheet(std::vector<float>& sheet, int stride, int k, int kt, int rx0, int rx1,
+                    int ry0, int ry1, BandState& state) {
+  const int width = state.width(), y0 = state.y0();
+  for (int y = ry0; y <= ry1; ++y)
+    for (int x = rx0; x <= rx1; ++x) {
+      float* b = &sheet[(static_cast<std::size_t>(y - y0) * width + x) * stride];
+      const float tau = b[0];
+      bool empty = !(tau > 0.f);
+      for (int c = 0; c < kt && empty; ++c) empty = !(b[1 + c] > 0.f);
+      if (empty) continue;  // nothing reached this pixel in this sheet: it is still all zero
+      const std::size_t p = state.pixel(x, y);
+      // exp(−τ) serves the transmission too where the sheet attenuates as it scatters there.
+      const float kept = fastExp(-tau);
+      if (tau > 0.f) {
+        const float alpha_per_tau = (1.f - kept) / tau;
+        for (int c = 0; c < k; ++c) {
+          const float t = state.transmittance(kt > 1 ? c : 0)[p];
+          state.scattered(c)[p] += t * alpha_per_tau * b[1 + kt + c];
+        }
+      }
+      bool attenuated = false;
+      for (int c = 0; c < kt; ++c)
+        if (b[1 + c] > 0.f) {
+          state.transmittance(c)[p] *= b[1 + c] == tau ? kept : fastExp(-b[1 + c]);
+          attenuated = true;
+        }
+      if (attenuated) state.update(x, y);
+      std::fill(b, b + stride, 0.f);
+    }
+}
+
 // One band, sheet by sheet. The sheet buffer holds per pixel: the optical depth of the
 // scattering extinction, kt optical depths of the attenuating extinction, and k
-// opacity-weighted colours.
+// opacity-weighted colours. Splats are front to back, and every splat of one render reaches
+// the same depth either side (the kernel seen along the view axis), so they become active and
+// retire in the same order: the active ones are always ids[first, next).
 void compositeBand(const SplatList& list, const FootprintTable& table,
                    std::span<const std::uint32_t> ids, double first_sheet, double thickness,
                    BandState& state) {
@@ -21,104 +67,94 @@ void compositeBand(const SplatList& list, const FootprintTable& table,
   const int stride = 1 + kt + k;
   const int width = state.width(), y0 = state.y0(), y1 = state.y1();
   std::vector<float> sheet(static_cast<std::size_t>(y1 - y0) * width * stride, 0.f);
-  // The coefficients of every active splat, computed once when it becomes active rather than
-  // on each of the sheets it reaches: sigma_alpha, kt sigma_t, k colour per splat.
-  const int coef_stride = 1 + kt + k;
-  std::vector<float> coefs;
   const auto splats = list.splats();
   const float cut = static_cast<float>(table.cutoff()), cut2 = table.cutoffSquared();
-  // Every splat of one render has the same depth σ (the kernel seen along the view axis).
   const float depth_sigma = list.maxDepthSigma();
   const float reach = cut * depth_sigma;
 
-  std::vector<std::uint32_t> active;  // positions in ids, front to back
-  std::size_t next = 0;
+  std::vector<ActiveSplat> active;  // active[i] is ids[first + i]
+  std::vector<float> pool;          // weights and coefficients of the active splats
+  std::size_t first = 0, next = 0;
+  std::vector<float> sigma_t(kt), colour(k);
   long j = 0;
   while (!state.allDone()) {
-    if (active.empty()) {
+    if (first == next) {
       if (next == ids.size()) break;
+      active.clear();
+      pool.clear();
       // Jump over empty sheets to the first one the next splat reaches.
       j = std::max(j, static_cast<long>(
                           std::floor((splats[ids[next]].depth - reach - first_sheet) / thickness)));
     }
     const double z0 = first_sheet + j * thickness, z1 = z0 + thickness;
+    while (first < next && splats[ids[first]].depth + reach <= z0) ++first;  // retired
+    if (first - (next - active.size()) > active.size() / 2 && first != next) {
+      // Drop the retired half of the active list and its pool entries.
+      const std::size_t drop = first - (next - active.size());
+      const std::size_t from = active[drop].coefs;
+      active.erase(active.begin(), active.begin() + static_cast<long>(drop));
+      pool.erase(pool.begin(), pool.begin() + static_cast<long>(from));
+      for (ActiveSplat& a : active) {
+        a.weights -= from;
+        a.coefs -= from;
+      }
+    }
     while (next < ids.size() && splats[ids[next]].depth - reach < z1) {
-      const std::size_t at = coefs.size();
-      coefs.resize(at + coef_stride);
-      SplatCoefficients coef{0.f, {&coefs[at + 1], static_cast<std::size_t>(kt)},
-                             {&coefs[at + 1 + kt], static_cast<std::size_t>(k)}};
-      list.coefficients(splats[ids[next]], coef);
-      coefs[at] = coef.sigma_alpha;
-      active.push_back(next++);
+      const Splat& s = splats[ids[next]];
+      const Footprint& fp = list.footprint(ids[next]);
+      ActiveSplat a{};
+      pixelRange(s.x, fp.half_w, width, a.xa, a.xb);
+      pixelRange(s.y, fp.half_h, y1, a.ya, a.yb);
+      a.ya = std::max(a.ya, y0);
+      a.coefs = pool.size();
+      SplatCoefficients coef{0.f, sigma_t, colour};
+      list.coefficients(s, coef);
+      pool.push_back(coef.sigma_alpha);
+      pool.insert(pool.end(), sigma_t.begin(), sigma_t.end());
+      pool.insert(pool.end(), colour.begin(), colour.end());
+      a.weights = pool.size();
+      for (int y = a.ya; y <= a.yb; ++y) {
+        const float dy = y + 0.5f - s.y;
+        const float qy = fp.c * dy * dy, bxy = 2.f * fp.b * dy;
+        for (int x = a.xa; x <= a.xb; ++x) {
+          const float dx = x + 0.5f - s.x;
+          const float q = (fp.a * dx + bxy) * dx + qy;
+          pool.push_back(q < cut2 ? fp.norm * table.gaussian(q) : 0.f);
+        }
+      }
+      active.push_back(a);
+      ++next;
     }
     int rx0 = width, rx1 = -1, ry0 = y1, ry1 = y0 - 1;  // the sheet's dirty rectangle
-    std::size_t kept = 0;
-    for (std::size_t slot = 0; slot < active.size(); ++slot) {
-      const std::uint32_t a = active[slot];
-      const std::uint32_t id = ids[a];
-      const Splat& s = splats[id];
-      if (s.depth + reach <= z0) continue;  // wholly in front of this sheet: retired
-      float* coef = &coefs[kept * coef_stride];
-      if (kept != slot)
-        std::copy_n(&coefs[slot * coef_stride], coef_stride, coef);
-      active[kept++] = a;
+    const std::size_t skip = first - (next - active.size());
+    for (std::size_t i = skip; i < active.size(); ++i) {
+      const ActiveSplat& a = active[i];
+      const Splat& s = splats[ids[next - active.size() + i]];
+      if (a.xa > a.xb || a.ya > a.yb) continue;
       const float share = table.cdf(static_cast<float>((z1 - s.depth) / depth_sigma)) -
                           table.cdf(static_cast<float>((z0 - s.depth) / depth_sigma));
-      if (!(share > 0.f)) continue;
-      const Footprint& fp = list.footprint(id);
-      int xa, xb, ya, yb;
-      pixelRange(s.x, fp.half_w, width, xa, xb);
-      pixelRange(s.y, fp.half_h, y1, ya, yb);
-      ya = std::max(ya, y0);
-      if (xa > xb || ya > yb || state.columnsDone(xa, xb)) continue;
+      if (!(share > 0.f) || state.columnsDone(a.xa, a.xb)) continue;
+      const float* coef = &pool[a.coefs];
       const float sigma_alpha = coef[0];
-      const float* sigma_t = coef + 1;
-      const float* colour = coef + 1 + kt;
-      const float weight = fp.norm * share;
-      for (int y = ya; y <= yb; ++y) {
-        const float dy = y + 0.5f - s.y;
-        for (int x = xa; x <= xb; ++x) {
-          const float dx = x + 0.5f - s.x;
-          const float q = fp.a * dx * dx + 2.f * fp.b * dx * dy + fp.c * dy * dy;
-          if (q >= cut2 || state.done(x, y)) continue;
-          const float length = weight * table.gaussian(q);  // world length of kernel in sheet
+      const float* st = coef + 1;
+      const float* col = coef + 1 + kt;
+      const float* w = &pool[a.weights];
+      rx0 = std::min(rx0, a.xa);
+      rx1 = std::max(rx1, a.xb);
+      ry0 = std::min(ry0, a.ya);
+      ry1 = std::max(ry1, a.yb);
+      for (int y = a.ya; y <= a.yb; ++y)
+        for (int x = a.xa; x <= a.xb; ++x, ++w) {
+          if (!(*w > 0.f) || state.done(x, y)) continue;
+          const float length = share * *w;  // world length of the kernel in this sheet
           float* b = &sheet[(static_cast<std::size_t>(y - y0) * width + x) * stride];
           const float scatter = sigma_alpha * length;
           b[0] += scatter;
-          for (int c = 0; c < kt; ++c) b[1 + c] += sigma_t[c] * length;
-          for (int c = 0; c < k; ++c) b[1 + kt + c] += scatter * colour[c];
-          rx0 = std::min(rx0, x);
-          rx1 = std::max(rx1, x);
-          ry0 = std::min(ry0, y);
-          ry1 = std::max(ry1, y);
+          for (int c = 0; c < kt; ++c) b[1 + c] += st[c] * length;
+          for (int c = 0; c < k; ++c) b[1 + kt + c] += scatter * col[c];
         }
-      }
     }
-    active.resize(kept);
-    coefs.resize(kept * coef_stride);
-
-    // Composite the sheet like one raycast sample: α = 1 − exp(−τ), colour = E / τ.
-    for (int y = ry0; y <= ry1; ++y)
-      for (int x = rx0; x <= rx1; ++x) {
-        float* b = &sheet[(static_cast<std::size_t>(y - y0) * width + x) * stride];
-        const std::size_t p = state.pixel(x, y);
-        const float tau = b[0];
-        if (tau > 0.f) {
-          const float alpha_per_tau = -std::expm1(-tau) / tau;
-          for (int c = 0; c < k; ++c) {
-            const float t = state.transmittance(kt > 1 ? c : 0)[p];
-            state.scattered(c)[p] += t * alpha_per_tau * b[1 + kt + c];
-          }
-        }
-        bool attenuated = false;
-        for (int c = 0; c < kt; ++c)
-          if (b[1 + c] > 0.f) {
-            state.transmittance(c)[p] *= std::exp(-b[1 + c]);
-            attenuated = true;
-          }
-        if (attenuated) state.update(x, y);
-        std::fill(b, b + stride, 0.f);
-      }
+    compositeSheet(sheet, stride, k, kt, rx0, rx1, ry0, ry1, state);
     ++j;
   }
 }
