@@ -1,5 +1,6 @@
 #include "renderers/core/splat_projection.h"
 
+#include <algorithm>
 #include <bit>
 
 namespace svr::splat {
@@ -33,14 +34,14 @@ ProjectedVoxels projectVoxels(const SplatVoxels& voxels, const ClassifiedVolume&
     if (!ortho) footprint[i] = fp;
   }
   ProjectedVoxels out;
-  for (std::size_t i = 0; i < total; ++i)
-    if (keep[i]) out.ids.push_back(static_cast<std::uint32_t>(i));
+  out.ids = keptIndices(keep);
   sortByDepth(out.ids, depth);
   const std::size_t n = out.ids.size();
   out.position.resize(n);
   out.depth.resize(n);
   if (ortho) out.footprints = {any};
   else out.footprints.resize(n);
+#pragma omp parallel for schedule(static)
   for (std::size_t i = 0; i < n; ++i) {
     const std::uint32_t id = out.ids[i];
     out.position[i] = position[id];
@@ -53,23 +54,62 @@ ProjectedVoxels projectVoxels(const SplatVoxels& voxels, const ClassifiedVolume&
 void sortByDepth(std::vector<std::uint32_t>& ids, const std::vector<float>& key) {
   const std::size_t n = ids.size();
   std::vector<std::uint32_t> bits(n), other_ids(n), other_bits(n);
+#pragma omp parallel for schedule(static)
   for (std::size_t i = 0; i < n; ++i) {
     const float k = key[ids[i]] == 0.f ? 0.f : key[ids[i]];  // −0 sorts with +0
     const std::uint32_t u = std::bit_cast<std::uint32_t>(k);
     bits[i] = (u & 0x80000000u) ? ~u : (u | 0x80000000u);  // order-preserving for floats
   }
+  // Each pass is a stable counting sort on 11 bits, over fixed chunks (not threads): every chunk
+  // counts its digits, the offsets run digit by digit and within a digit chunk by chunk, and
+  // every chunk then scatters its own keys in order — the sequential result, whatever the
+  // thread count.
+  constexpr int kDigits = 2048;
+  const std::size_t chunks = std::clamp<std::size_t>(n / 65536, 1, 64);
+  const auto chunkBegin = [&](std::size_t c) { return n * c / chunks; };
+  std::vector<std::size_t> offset(chunks * kDigits);
   for (int shift = 0; shift < 32; shift += 11) {
-    std::vector<std::size_t> count(2049, 0);
-    for (std::size_t i = 0; i < n; ++i) ++count[((bits[i] >> shift) & 2047u) + 1];
-    for (int b = 0; b < 2048; ++b) count[b + 1] += count[b];
-    for (std::size_t i = 0; i < n; ++i) {
-      const std::size_t to = count[(bits[i] >> shift) & 2047u]++;
-      other_ids[to] = ids[i];
-      other_bits[to] = bits[i];
-    }
+    std::fill(offset.begin(), offset.end(), 0);
+#pragma omp parallel for schedule(static)
+    for (std::size_t c = 0; c < chunks; ++c)
+      for (std::size_t i = chunkBegin(c); i < chunkBegin(c + 1); ++i)
+        ++offset[c * kDigits + ((bits[i] >> shift) & 2047u)];
+    std::size_t sum = 0;
+    for (int d = 0; d < kDigits; ++d)
+      for (std::size_t c = 0; c < chunks; ++c) {
+        const std::size_t count = offset[c * kDigits + d];
+        offset[c * kDigits + d] = sum;
+        sum += count;
+      }
+#pragma omp parallel for schedule(static)
+    for (std::size_t c = 0; c < chunks; ++c)
+      for (std::size_t i = chunkBegin(c); i < chunkBegin(c + 1); ++i) {
+        const std::size_t to = offset[c * kDigits + ((bits[i] >> shift) & 2047u)]++;
+        other_ids[to] = ids[i];
+        other_bits[to] = bits[i];
+      }
     ids.swap(other_ids);
     bits.swap(other_bits);
   }
+}
+
+std::vector<std::uint32_t> keptIndices(const std::vector<std::uint8_t>& keep) {
+  const std::size_t n = keep.size();
+  const std::size_t chunks = std::clamp<std::size_t>(n / 65536, 1, 64);
+  const auto chunkBegin = [&](std::size_t c) { return n * c / chunks; };
+  std::vector<std::size_t> start(chunks + 1, 0);
+#pragma omp parallel for schedule(static)
+  for (std::size_t c = 0; c < chunks; ++c)
+    for (std::size_t i = chunkBegin(c); i < chunkBegin(c + 1); ++i) start[c + 1] += keep[i];
+  for (std::size_t c = 0; c < chunks; ++c) start[c + 1] += start[c];
+  std::vector<std::uint32_t> ids(start[chunks]);
+#pragma omp parallel for schedule(static)
+  for (std::size_t c = 0; c < chunks; ++c) {
+    std::size_t to = start[c];
+    for (std::size_t i = chunkBegin(c); i < chunkBegin(c + 1); ++i)
+      if (keep[i]) ids[to++] = static_cast<std::uint32_t>(i);
+  }
+  return ids;
 }
 
 }  // namespace svr::splat

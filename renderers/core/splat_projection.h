@@ -35,4 +35,7 @@ ProjectedVoxels projectVoxels(const SplatVoxels& voxels, const ClassifiedVolume&
 // Stable sort of `ids` by key[id] ascending (LSD radix on the float bits; −0 sorts with +0).
 void sortByDepth(std::vector<std::uint32_t>& ids, const std::vector<float>& key);
 
+// The positions i where keep[i] is non-zero, ascending.
+std::vector<std::uint32_t> keptIndices(const std::vector<std::uint8_t>& keep);
+
 }  // namespace svr::splat

@@ -132,27 +132,47 @@ Bands bandsOf(const SplatList& list, int height, int rows) {
   bands.rows = rows;
   bands.count = (height + rows - 1) / rows;
   const auto splats = list.splats();
-  // Counting sort by band, in splat order: each band's list stays front to back.
-  std::vector<std::size_t> count(bands.count + 1, 0);
   const auto range = [&](std::size_t i, int& b0, int& b1) {
     int lo, hi;
     pixelRange(splats[i].y, list.footprint(i).half_h, height, lo, hi);
     b0 = lo / rows;
     b1 = lo > hi ? b0 - 1 : hi / rows;
   };
-  for (std::size_t i = 0; i < splats.size(); ++i) {
-    int b0, b1;
-    range(i, b0, b1);
-    for (int b = b0; b <= b1; ++b) ++count[b + 1];
+  // Counting sort by band, in splat order, so each band's list stays front to back: over fixed
+  // chunks of splats (not threads), each counting its own, the offsets band by band and within
+  // a band chunk by chunk — the sequential result, whatever the thread count.
+  const std::size_t n = splats.size();
+  const std::size_t chunks = std::clamp<std::size_t>(n / 65536, 1, 64);
+  const auto chunkBegin = [&](std::size_t c) { return n * c / chunks; };
+  const std::size_t nb = static_cast<std::size_t>(bands.count);
+  std::vector<std::size_t> offset(chunks * nb, 0);
+#pragma omp parallel for schedule(static)
+  for (std::size_t c = 0; c < chunks; ++c)
+    for (std::size_t i = chunkBegin(c); i < chunkBegin(c + 1); ++i) {
+      int b0, b1;
+      range(i, b0, b1);
+      for (int b = b0; b <= b1; ++b) ++offset[c * nb + b];
+    }
+  bands.offsets.assign(nb + 1, 0);
+  std::size_t sum = 0;
+  for (std::size_t b = 0; b < nb; ++b) {
+    bands.offsets[b] = sum;
+    for (std::size_t c = 0; c < chunks; ++c) {
+      const std::size_t count = offset[c * nb + b];
+      offset[c * nb + b] = sum;
+      sum += count;
+    }
   }
-  for (int b = 0; b < bands.count; ++b) count[b + 1] += count[b];
-  bands.offsets = count;
-  bands.splats.resize(count.back());
-  for (std::size_t i = 0; i < splats.size(); ++i) {
-    int b0, b1;
-    range(i, b0, b1);
-    for (int b = b0; b <= b1; ++b) bands.splats[count[b]++] = static_cast<std::uint32_t>(i);
-  }
+  bands.offsets[nb] = sum;
+  bands.splats.resize(sum);
+#pragma omp parallel for schedule(static)
+  for (std::size_t c = 0; c < chunks; ++c)
+    for (std::size_t i = chunkBegin(c); i < chunkBegin(c + 1); ++i) {
+      int b0, b1;
+      range(i, b0, b1);
+      for (int b = b0; b <= b1; ++b)
+        bands.splats[offset[c * nb + b]++] = static_cast<std::uint32_t>(i);
+    }
   return bands;
 }
 
