@@ -37,7 +37,9 @@ void compositeBand(const SplatList& list, const FootprintTable& table,
     for (int y = ya; y <= yb; ++y) {
       const float dy = y + 0.5f - s.y;
       const float qy = fp.c * dy * dy, bxy = 2.f * fp.b * dy;
-      for (int x = xa; x <= xb; ++x) {
+      int lo, hi;
+      ellipseRow(fp, s.x, dy, cut2, xa, xb, lo, hi);
+      for (int x = lo; x <= hi; ++x) {
         const float dx = x + 0.5f - s.x;
         const float q = (fp.a * dx + bxy) * dx + qy;
         if (q >= cut2 || state.done(x, y)) continue;

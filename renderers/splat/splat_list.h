@@ -79,4 +79,22 @@ inline void pixelRange(float centre, float half, int size, int& lo, int& hi) {
   hi = std::min(static_cast<int>(std::floor(centre + half - 0.5f)), size - 1);
 }
 
+// Within [xa, xb], the pixels of one row whose centres can lie inside the footprint's ellipse
+// q = a dx² + 2 b dx dy + c dy² < cut2, dy the row's offset from the splat centre: the chord of
+// the ellipse, widened by 0.01 pixel so that float rounding never drops a pixel the per-pixel
+// test would keep (that test still decides). Empty (lo > hi) where the row misses the ellipse.
+inline void ellipseRow(const Footprint& fp, float sx, float dy, float cut2, int xa, int xb,
+                       int& lo, int& hi) {
+  const float disc = (fp.b * fp.b - fp.a * fp.c) * dy * dy + fp.a * cut2;
+  if (!(disc > 0.f)) {
+    lo = xa;
+    hi = xa - 1;
+    return;
+  }
+  const float centre = sx - fp.b * dy / fp.a - 0.5f;  // in pixel indices
+  const float half = std::sqrt(disc) / fp.a + 0.01f;
+  lo = std::max(xa, static_cast<int>(std::ceil(centre - half)));
+  hi = std::min(xb, static_cast<int>(std::floor(centre + half)));
+}
+
 }  // namespace svr::splat
