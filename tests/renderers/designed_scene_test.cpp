@@ -164,7 +164,7 @@ TEST(DesignedScenes, EnginePaletteProjectsOntoTheScenesFactor6WithinHalfAUnit) {
 // so only the colour model differs). Their materials absorb achromatically: the image is a sum
 // of the designed reflectances (and the specular white), which factor:k spans exactly once k
 // covers them, and full light matrices take each light whole — metameric blacks included.
-TEST(DesignedScenes, EachRendersWithItsOwnModelOfAtMost8ChannelsWithinOneUnit) {
+TEST(DesignedScenes, EachRendersWithItsOwnFactorModelOfAtMost8ChannelsWithinOneUnit) {
   const Observer& observer = test::rendererObserver();
   const auto spectral = makeSpectralModel(observer, 81);
   const auto renderer = makeRenderer("raycast");
