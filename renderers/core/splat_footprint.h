@@ -25,6 +25,14 @@ struct KernelShape {
   double cutoff() const { return radius / sigma; }  // truncation in units of σ
 };
 
+// Sheet-buffer compositing cuts a kernel in depth at ±2σ, not at its truncation radius (±3.6σ
+// by default): the 2.3% of its mass in each tail goes to the sheet next to it, less than a
+// voxel away, and the shares still sum to exactly 1 over any run of sheets. A splat then
+// reaches 3–4 sheets of a voxel instead of 4–5. Measured (256², factor:6, mean ΔE2000 against
+// the raycaster): engine 1.694, frog 1.595 → 1.594, cthead_xray_zoom 2.710, unchanged to the
+// third decimal; CPU sheet frames at 512² a quarter faster.
+inline constexpr double kSheetDepthCut = 2.0;
+
 // A footprint in the image: line integral of the kernel through pixel offset (dx, dy) is
 // norm · exp(−q/2), q = a dx² + 2 b dx dy + c dy², for q < cutoff²; zero outside.
 struct Footprint {

@@ -274,7 +274,7 @@ const gl::GlProgram& GlSplatFrame::splatProgram(PassOutput output, int targets) 
   p.set("u_margin", float(margin_));
   p.set("u_per_splat_footprint", ortho_ ? 0 : 1);
   p.set("u_cut2", float(cutoff * cutoff));
-  p.set("u_cut", float(cutoff));
+  p.set("u_cut", float(std::min(cutoff, splat::kSheetDepthCut)));  // sheets' depth cut
   p.set("u_depth_sigma", float(depth_sigma_));
   p.set("u_phi_lo", float(normalCdf(-cutoff)));
   p.set("u_phi_span", float(normalCdf(cutoff) - normalCdf(-cutoff)));
@@ -329,10 +329,11 @@ void GlSplatFrame::compositeS(
 void GlSplatFrame::compositeSheets(ProgressCounter& progress) {
   const double min_spacing = std::min({cv_.spacing.x, cv_.spacing.y, cv_.spacing.z});
   const double thickness = settings_.sheet_voxels * min_spacing;
-  const double reach = settings_.kernel.cutoff() * depth_sigma_;
+  const double full_reach = settings_.kernel.cutoff() * depth_sigma_;
+  const double reach = std::min(settings_.kernel.cutoff(), splat::kSheetDepthCut) * depth_sigma_;
   const auto& depth = depth_front_to_back_;
   // The CPU's sheet lattice: the first sheet starts where the front splat's kernel does.
-  const double first = depth.front() - reach;
+  const double first = depth.front() - full_reach;
   const long sheets = static_cast<long>(std::floor((depth.back() + reach - first) / thickness)) + 1;
   const int acc_layers = (stride_ + 3) / 4;
   gl::LayeredTarget sheet(ctx_, W_ + 2 * margin_, H_ + 2 * margin_, acc_layers, "the sheet buffer");

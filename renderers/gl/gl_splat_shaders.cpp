@@ -189,7 +189,8 @@ uniform vec2 u_frame;
 uniform float u_margin;
 uniform int u_per_splat_footprint;
 // Sheet mode: the splat's share of its kernel between depths u_z0 and u_z1 (the truncated
-// normal CDF, as the CPU's table); otherwise the whole kernel.
+// normal CDF, as the CPU's table, its tails beyond ±u_cut — kSheetDepthCut — given to the
+// sheets next to them); otherwise the whole kernel.
 uniform int u_sheet;
 uniform float u_z0, u_z1, u_depth_sigma, u_cut, u_phi_lo, u_phi_span;
 flat out float v_weight;

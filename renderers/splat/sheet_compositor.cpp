@@ -14,7 +14,7 @@ namespace {
 
 // A splat while its kernel reaches the current sheet: its footprint box within the band, the
 // kernel's world length at each pixel of the box (0 outside the footprint), computed once when
-// it becomes active rather than on each of the 4–5 sheets it reaches, and its coefficients.
+// it becomes active rather than on each of the 3–4 sheets it reaches, and its coefficients.
 struct ActiveSplat {
   int xa, xb, ya, yb;
   std::size_t weights;  // offset of the box's (xb − xa + 1)(yb − ya + 1) lengths in the pool
@@ -70,7 +70,11 @@ void compositeBand(const SplatList& list, const FootprintTable& table,
   const auto splats = list.splats();
   const float cut = static_cast<float>(table.cutoff()), cut2 = table.cutoffSquared();
   const float depth_sigma = list.maxDepthSigma();
-  const float reach = cut * depth_sigma;
+  const float depth_cut = static_cast<float>(std::min(table.cutoff(), kSheetDepthCut));
+  const float reach = depth_cut * depth_sigma;
+  const auto below = [&](double t) {
+    return t <= -depth_cut ? 0.f : t >= depth_cut ? 1.f : table.cdf(static_cast<float>(t));
+  };
 
   std::vector<ActiveSplat> active;  // active[i] is ids[first + i]
   std::vector<float> pool;          // weights and coefficients of the active splats
@@ -131,8 +135,7 @@ void compositeBand(const SplatList& list, const FootprintTable& table,
       const ActiveSplat& a = active[i];
       const Splat& s = splats[ids[next - active.size() + i]];
       if (a.xa > a.xb || a.ya > a.yb) continue;
-      const float share = table.cdf(static_cast<float>((z1 - s.depth) / depth_sigma)) -
-                          table.cdf(static_cast<float>((z0 - s.depth) / depth_sigma));
+      const float share = below((z1 - s.depth) / depth_sigma) - below((z0 - s.depth) / depth_sigma);
       if (!(share > 0.f) || state.columnsDone(a.xa, a.xb)) continue;
       const float* coef = &pool[a.coefs];
       const float sigma_alpha = coef[0];
