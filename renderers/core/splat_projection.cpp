@@ -1,6 +1,5 @@
 #include "renderers/core/splat_projection.h"
 
-#include <algorithm>
 #include <bit>
 
 namespace svr::splat {
@@ -60,30 +59,28 @@ void sortByDepth(std::vector<std::uint32_t>& ids, const std::vector<float>& key)
     const std::uint32_t u = std::bit_cast<std::uint32_t>(k);
     bits[i] = (u & 0x80000000u) ? ~u : (u | 0x80000000u);  // order-preserving for floats
   }
-  // Each pass is a stable counting sort on 11 bits, over fixed chunks (not threads): every chunk
-  // counts its digits, the offsets run digit by digit and within a digit chunk by chunk, and
-  // every chunk then scatters its own keys in order — the sequential result, whatever the
-  // thread count.
+  // Each pass is a stable counting sort on 11 bits over fixed chunks: every chunk counts its
+  // digits, the offsets run digit by digit and within a digit chunk by chunk, and every chunk
+  // then scatters its own keys in order.
   constexpr int kDigits = 2048;
-  const std::size_t chunks = std::clamp<std::size_t>(n / 65536, 1, 64);
-  const auto chunkBegin = [&](std::size_t c) { return n * c / chunks; };
-  std::vector<std::size_t> offset(chunks * kDigits);
+  const FixedChunks chunks(n);
+  std::vector<std::size_t> offset(chunks.count * kDigits);
   for (int shift = 0; shift < 32; shift += 11) {
     std::fill(offset.begin(), offset.end(), 0);
 #pragma omp parallel for schedule(static)
-    for (std::size_t c = 0; c < chunks; ++c)
-      for (std::size_t i = chunkBegin(c); i < chunkBegin(c + 1); ++i)
+    for (std::size_t c = 0; c < chunks.count; ++c)
+      for (std::size_t i = chunks.begin(c); i < chunks.end(c); ++i)
         ++offset[c * kDigits + ((bits[i] >> shift) & 2047u)];
     std::size_t sum = 0;
     for (int d = 0; d < kDigits; ++d)
-      for (std::size_t c = 0; c < chunks; ++c) {
+      for (std::size_t c = 0; c < chunks.count; ++c) {
         const std::size_t count = offset[c * kDigits + d];
         offset[c * kDigits + d] = sum;
         sum += count;
       }
 #pragma omp parallel for schedule(static)
-    for (std::size_t c = 0; c < chunks; ++c)
-      for (std::size_t i = chunkBegin(c); i < chunkBegin(c + 1); ++i) {
+    for (std::size_t c = 0; c < chunks.count; ++c)
+      for (std::size_t i = chunks.begin(c); i < chunks.end(c); ++i) {
         const std::size_t to = offset[c * kDigits + ((bits[i] >> shift) & 2047u)]++;
         other_ids[to] = ids[i];
         other_bits[to] = bits[i];
@@ -94,19 +91,17 @@ void sortByDepth(std::vector<std::uint32_t>& ids, const std::vector<float>& key)
 }
 
 std::vector<std::uint32_t> keptIndices(const std::vector<std::uint8_t>& keep) {
-  const std::size_t n = keep.size();
-  const std::size_t chunks = std::clamp<std::size_t>(n / 65536, 1, 64);
-  const auto chunkBegin = [&](std::size_t c) { return n * c / chunks; };
-  std::vector<std::size_t> start(chunks + 1, 0);
+  const FixedChunks chunks(keep.size());
+  std::vector<std::size_t> start(chunks.count + 1, 0);
 #pragma omp parallel for schedule(static)
-  for (std::size_t c = 0; c < chunks; ++c)
-    for (std::size_t i = chunkBegin(c); i < chunkBegin(c + 1); ++i) start[c + 1] += keep[i];
-  for (std::size_t c = 0; c < chunks; ++c) start[c + 1] += start[c];
-  std::vector<std::uint32_t> ids(start[chunks]);
+  for (std::size_t c = 0; c < chunks.count; ++c)
+    for (std::size_t i = chunks.begin(c); i < chunks.end(c); ++i) start[c + 1] += keep[i];
+  for (std::size_t c = 0; c < chunks.count; ++c) start[c + 1] += start[c];
+  std::vector<std::uint32_t> ids(start[chunks.count]);
 #pragma omp parallel for schedule(static)
-  for (std::size_t c = 0; c < chunks; ++c) {
+  for (std::size_t c = 0; c < chunks.count; ++c) {
     std::size_t to = start[c];
-    for (std::size_t i = chunkBegin(c); i < chunkBegin(c + 1); ++i)
+    for (std::size_t i = chunks.begin(c); i < chunks.end(c); ++i)
       if (keep[i]) ids[to++] = static_cast<std::uint32_t>(i);
   }
   return ids;

@@ -5,6 +5,8 @@
 // to back, ties broken by list order, so the order never depends on threads and both backends
 // composite the same splats in the same order.
 
+#include <algorithm>
+#include <cstddef>
 #include <cstdint>
 #include <vector>
 
@@ -31,6 +33,17 @@ glm::dvec3 voxelWorld(const ClassifiedVolume& cv, std::uint32_t index);
 
 ProjectedVoxels projectVoxels(const SplatVoxels& voxels, const ClassifiedVolume& cv,
                               const Projector& projector, int width, int height);
+
+// [0, n) cut into a count of chunks that depends on n alone (64 at most, of at least 65536 items
+// where n allows): loops over chunks in parallel — each chunk counting, then each placing its own
+// items — give the sequential result whatever the thread count.
+struct FixedChunks {
+  explicit FixedChunks(std::size_t items)
+      : n(items), count(std::clamp<std::size_t>(items / 65536, 1, 64)) {}
+  std::size_t begin(std::size_t chunk) const { return n * chunk / count; }
+  std::size_t end(std::size_t chunk) const { return begin(chunk + 1); }
+  std::size_t n, count;
+};
 
 // Stable sort of `ids` by key[id] ascending (LSD radix on the float bits; −0 sorts with +0).
 void sortByDepth(std::vector<std::uint32_t>& ids, const std::vector<float>& key);

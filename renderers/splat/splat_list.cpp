@@ -139,16 +139,14 @@ Bands bandsOf(const SplatList& list, int height, int rows) {
     b1 = lo > hi ? b0 - 1 : hi / rows;
   };
   // Counting sort by band, in splat order, so each band's list stays front to back: over fixed
-  // chunks of splats (not threads), each counting its own, the offsets band by band and within
-  // a band chunk by chunk — the sequential result, whatever the thread count.
-  const std::size_t n = splats.size();
-  const std::size_t chunks = std::clamp<std::size_t>(n / 65536, 1, 64);
-  const auto chunkBegin = [&](std::size_t c) { return n * c / chunks; };
+  // chunks of splats, each counting its own, the offsets band by band and within a band chunk
+  // by chunk.
+  const FixedChunks chunks(splats.size());
   const std::size_t nb = static_cast<std::size_t>(bands.count);
-  std::vector<std::size_t> offset(chunks * nb, 0);
+  std::vector<std::size_t> offset(chunks.count * nb, 0);
 #pragma omp parallel for schedule(static)
-  for (std::size_t c = 0; c < chunks; ++c)
-    for (std::size_t i = chunkBegin(c); i < chunkBegin(c + 1); ++i) {
+  for (std::size_t c = 0; c < chunks.count; ++c)
+    for (std::size_t i = chunks.begin(c); i < chunks.end(c); ++i) {
       int b0, b1;
       range(i, b0, b1);
       for (int b = b0; b <= b1; ++b) ++offset[c * nb + b];
@@ -157,7 +155,7 @@ Bands bandsOf(const SplatList& list, int height, int rows) {
   std::size_t sum = 0;
   for (std::size_t b = 0; b < nb; ++b) {
     bands.offsets[b] = sum;
-    for (std::size_t c = 0; c < chunks; ++c) {
+    for (std::size_t c = 0; c < chunks.count; ++c) {
       const std::size_t count = offset[c * nb + b];
       offset[c * nb + b] = sum;
       sum += count;
@@ -166,8 +164,8 @@ Bands bandsOf(const SplatList& list, int height, int rows) {
   bands.offsets[nb] = sum;
   bands.splats.resize(sum);
 #pragma omp parallel for schedule(static)
-  for (std::size_t c = 0; c < chunks; ++c)
-    for (std::size_t i = chunkBegin(c); i < chunkBegin(c + 1); ++i) {
+  for (std::size_t c = 0; c < chunks.count; ++c)
+    for (std::size_t i = chunks.begin(c); i < chunks.end(c); ++i) {
       int b0, b1;
       range(i, b0, b1);
       for (int b = b0; b <= b1; ++b)
