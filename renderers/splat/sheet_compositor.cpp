@@ -16,6 +16,7 @@ namespace {
 // kernel's world length at each pixel of the box (0 outside the footprint), computed once when
 // it becomes active rather than on each of the 3–4 sheets it reaches, and its coefficients.
 struct ActiveSplat {
+  std::uint32_t id;
   int xa, xb, ya, yb;
   std::size_t weights;  // offset of the box's (xb − xa + 1)(yb − ya + 1) lengths in the pool
   std::size_t coefs;    // offset of sigma_alpha, kt sigma_t, k colour in the pool
@@ -59,7 +60,7 @@ void compositeSheet(std::vector<float>& sheet, int stride, int k, int kt, int rx
 // scattering extinction, kt optical depths of the attenuating extinction, and k
 // opacity-weighted colours. Splats are front to back, and every splat of one render reaches
 // the same depth either side (the kernel seen along the view axis), so they become active and
-// retire in the same order: the active ones are always ids[first, next).
+// retire in the same order: the ones still in reach are always active[live, end).
 void compositeBand(const SplatList& list, const FootprintTable& table,
                    std::span<const std::uint32_t> ids, double first_sheet, double thickness,
                    BandState& state) {
@@ -76,27 +77,28 @@ void compositeBand(const SplatList& list, const FootprintTable& table,
     return t <= -depth_cut ? 0.f : t >= depth_cut ? 1.f : table.cdf(static_cast<float>(t));
   };
 
-  std::vector<ActiveSplat> active;  // active[i] is ids[first + i]
+  std::vector<ActiveSplat> active;  // front to back; those before `live` have retired
   std::vector<float> pool;          // weights and coefficients of the active splats
-  std::size_t first = 0, next = 0;
+  std::size_t live = 0, next = 0;   // next: the first of ids not yet active
   std::vector<float> sigma_t(kt), colour(k);
   long j = 0;
   while (!state.allDone()) {
-    if (first == next) {
+    if (live == active.size()) {
       if (next == ids.size()) break;
       active.clear();
       pool.clear();
+      live = 0;
       // Jump over empty sheets to the first one the next splat reaches.
       j = std::max(j, static_cast<long>(
                           std::floor((splats[ids[next]].depth - reach - first_sheet) / thickness)));
     }
     const double z0 = first_sheet + j * thickness, z1 = z0 + thickness;
-    while (first < next && splats[ids[first]].depth + reach <= z0) ++first;  // retired
-    if (first - (next - active.size()) > active.size() / 2 && first != next) {
+    while (live < active.size() && splats[active[live].id].depth + reach <= z0) ++live;
+    if (live > active.size() / 2 && live < active.size()) {
       // Drop the retired half of the active list and its pool entries.
-      const std::size_t drop = first - (next - active.size());
-      const std::size_t from = active[drop].coefs;
-      active.erase(active.begin(), active.begin() + static_cast<long>(drop));
+      const std::size_t from = active[live].coefs;
+      active.erase(active.begin(), active.begin() + static_cast<long>(live));
+      live = 0;
       pool.erase(pool.begin(), pool.begin() + static_cast<long>(from));
       for (ActiveSplat& a : active) {
         a.weights -= from;
@@ -106,7 +108,7 @@ void compositeBand(const SplatList& list, const FootprintTable& table,
     while (next < ids.size() && splats[ids[next]].depth - reach < z1) {
       const Splat& s = splats[ids[next]];
       const Footprint& fp = list.footprint(ids[next]);
-      ActiveSplat a{};
+      ActiveSplat a{ids[next]};
       pixelRange(s.x, fp.half_w, width, a.xa, a.xb);
       pixelRange(s.y, fp.half_h, y1, a.ya, a.yb);
       a.ya = std::max(a.ya, y0);
@@ -130,10 +132,9 @@ void compositeBand(const SplatList& list, const FootprintTable& table,
       ++next;
     }
     int rx0 = width, rx1 = -1, ry0 = y1, ry1 = y0 - 1;  // the sheet's dirty rectangle
-    const std::size_t skip = first - (next - active.size());
-    for (std::size_t i = skip; i < active.size(); ++i) {
+    for (std::size_t i = live; i < active.size(); ++i) {
       const ActiveSplat& a = active[i];
-      const Splat& s = splats[ids[next - active.size() + i]];
+      const Splat& s = splats[a.id];
       if (a.xa > a.xb || a.ya > a.yb) continue;
       const float share = below((z1 - s.depth) / depth_sigma) - below((z0 - s.depth) / depth_sigma);
       if (!(share > 0.f) || state.columnsDone(a.xa, a.xb)) continue;
