@@ -15,16 +15,56 @@ float perUnitLength(float transmission, double step) {
   return static_cast<float>(-std::log(std::max(transmission, 1e-30f)) / step);
 }
 
+// The smallest and largest value of the 3 × 3 neighbourhood of each voxel of slice z (clamped
+// at the volume's sides), x fastest.
+void sliceNeighbourhoodRange(const ClassifiedVolume& cv, int z, std::vector<float>& lo,
+                             std::vector<float>& hi, std::vector<float>& row_lo,
+                             std::vector<float>& row_hi) {
+  const int nx = cv.dims[0], ny = cv.dims[1];
+  const std::size_t plane = static_cast<std::size_t>(nx) * ny;
+  const float* v = cv.values.data() + plane * z;
+  row_lo.resize(plane);
+  row_hi.resize(plane);
+  for (int y = 0; y < ny; ++y)
+    for (int x = 0; x < nx; ++x) {
+      const std::size_t i = static_cast<std::size_t>(y) * nx + x;
+      float a = v[i], b = v[i];
+      if (x > 0) a = std::min(a, v[i - 1]), b = std::max(b, v[i - 1]);
+      if (x + 1 < nx) a = std::min(a, v[i + 1]), b = std::max(b, v[i + 1]);
+      row_lo[i] = a;
+      row_hi[i] = b;
+    }
+  lo.resize(plane);
+  hi.resize(plane);
+  for (int y = 0; y < ny; ++y)
+    for (int x = 0; x < nx; ++x) {
+      const std::size_t i = static_cast<std::size_t>(y) * nx + x;
+      float a = row_lo[i], b = row_hi[i];
+      if (y > 0) a = std::min(a, row_lo[i - nx]), b = std::max(b, row_hi[i - nx]);
+      if (y + 1 < ny) a = std::min(a, row_lo[i + nx]), b = std::max(b, row_hi[i + nx]);
+      lo[i] = a;
+      hi[i] = b;
+    }
+}
+
 }  // namespace
 
-SplatVoxels::SplatVoxels(const ClassifiedVolume& cv) : dims_(cv.dims) {
+SplatVoxels::SplatVoxels(const ClassifiedVolume& cv, Set set) : dims_(cv.dims) {
+  if (set == Set::kReconstruction && cv.labels)
+    throw Error("splat: a label map has no values between its voxels to classify");
   const int kt = cv.t_channels;
   sigma_alpha_.resize(cv.entries);
   sigma_t_.resize(static_cast<std::size_t>(cv.entries) * kt);
+  // visible_before[e]: how many of the entries below e scatter or absorb.
+  std::vector<int> visible_before(cv.entries + 1, 0);
   for (int e = 0; e < cv.entries; ++e) {
     sigma_alpha_[e] = perUnitLength(1.f - cv.alpha[e], cv.step_world);
-    for (int c = 0; c < kt; ++c)
+    bool visible = sigma_alpha_[e] > 0.f;
+    for (int c = 0; c < kt; ++c) {
       sigma_t_[e * kt + c] = perUnitLength(cv.transmission[e * kt + c], cv.step_world);
+      visible = visible || sigma_t_[e * kt + c] > 0.f;
+    }
+    visible_before[e + 1] = visible_before[e] + (visible ? 1 : 0);
   }
   for (int a = 0; a < 3; ++a) inv_spacing_[a] = static_cast<float>(1.0 / cv.spacing[a]);
 
@@ -32,28 +72,50 @@ SplatVoxels::SplatVoxels(const ClassifiedVolume& cv) : dims_(cv.dims) {
   const std::size_t count = static_cast<std::size_t>(d[0]) * d[1] * d[2];
   if (count > std::numeric_limits<std::uint32_t>::max())
     throw Error("splat: volumes of more than 2³² voxels are not supported");
+  const std::size_t plane = static_cast<std::size_t>(d[0]) * d[1];
+  // Whether any value in [lo, hi] falls in or next to a visible entry.
+  const auto spansVisible = [&](float lo, float hi) {
+    int e_lo, e_hi, unused;
+    float f;
+    binOf(cv, lo, e_lo, unused, f);
+    binOf(cv, hi, unused, e_hi, f);
+    return visible_before[e_hi + 1] - visible_before[e_lo] > 0;
+  };
 
-  // Visible voxels, one list per z-slice filled in parallel and joined in slice order.
+  // One list per z-slice filled in parallel and joined in slice order.
   std::vector<std::vector<SplatVoxel>> slices(d[2]);
-#pragma omp parallel for schedule(dynamic)
-  for (int z = 0; z < d[2]; ++z)
-    for (int y = 0; y < d[1]; ++y)
-      for (int x = 0; x < d[0]; ++x) {
-        const std::size_t i = x + static_cast<std::size_t>(d[0]) * (y + static_cast<std::size_t>(d[1]) * z);
+#pragma omp parallel
+  {
+    std::vector<float> lo[3], hi[3], row_lo, row_hi;  // the neighbourhood ranges of z − 1 … z + 1
+#pragma omp for schedule(dynamic)
+    for (int z = 0; z < d[2]; ++z) {
+      if (set == Set::kReconstruction)
+        for (int s = 0; s < 3; ++s)
+          sliceNeighbourhoodRange(cv, std::clamp(z - 1 + s, 0, d[2] - 1), lo[s], hi[s], row_lo,
+                                  row_hi);
+      for (std::size_t xy = 0; xy < plane; ++xy) {
+        const std::size_t i = plane * z + xy;
         int e0, e1;
         float f = 0.f;
         if (cv.labels)
           e0 = e1 = cv.label[i];
         else
           binOf(cv, cv.values[i], e0, e1, f);
-        const float g = 1.f - f;
-        bool visible = g * sigma_alpha_[e0] + f * sigma_alpha_[e1] > 0.f;
-        for (int c = 0; c < kt && !visible; ++c)
-          visible = g * sigma_t_[e0 * kt + c] + f * sigma_t_[e1 * kt + c] > 0.f;
-        if (visible)
-          slices[z].push_back(
-              {static_cast<std::uint32_t>(i), static_cast<std::uint16_t>(e0), f});
+        bool keep;
+        if (set == Set::kReconstruction) {
+          keep = spansVisible(std::min({lo[0][xy], lo[1][xy], lo[2][xy]}),
+                              std::max({hi[0][xy], hi[1][xy], hi[2][xy]}));
+        } else {
+          const float g = 1.f - f;
+          keep = g * sigma_alpha_[e0] + f * sigma_alpha_[e1] > 0.f;
+          for (int c = 0; c < kt && !keep; ++c)
+            keep = g * sigma_t_[e0 * kt + c] + f * sigma_t_[e1 * kt + c] > 0.f;
+        }
+        if (keep)
+          slices[z].push_back({static_cast<std::uint32_t>(i), static_cast<std::uint16_t>(e0), f});
       }
+    }
+  }
   std::size_t total = 0;
   for (const auto& s : slices) total += s.size();
   voxels_.reserve(total);
@@ -82,9 +144,10 @@ SplatVoxels::SplatVoxels(const ClassifiedVolume& cv) : dims_(cv.dims) {
       }
 }
 
-std::shared_ptr<const SplatVoxels> SplatVoxels::of(const ClassifiedVolume& cv) {
+std::shared_ptr<const SplatVoxels> SplatVoxels::of(const ClassifiedVolume& cv, Set set) {
   return cv.derived->get<SplatVoxels>(
-      "splat.voxels", [&] { return std::make_shared<const SplatVoxels>(cv); });
+      set == Set::kVisible ? "splat.voxels" : "splat.voxels.reconstruction",
+      [&] { return std::make_shared<const SplatVoxels>(cv, set); });
 }
 
 void SplatVoxels::gradientAtNode(int i, int j, int k, float g[3]) const {

@@ -4,6 +4,13 @@
 // nothing on any later frame — with their classification entries, the per-unit-length
 // extinction tables, and the shading field averaged over the cells of the dual grid, from which
 // each frame takes a splat's shade.
+//
+// Post-classified splatting reconstructs the value between voxels and classifies it there, so it
+// needs more than the voxels that are visible themselves: every voxel whose neighbourhood
+// (3 × 3 × 3) spans a visible value. That takes in the empty voxels around a visible one — whose
+// values make the reconstructed field fall off at a boundary instead of ending at the last
+// visible voxel — and pairs of empty voxels a thin visible value range lies between, which the
+// raycaster's interpolation finds and voxel-centre classification misses.
 
 #include <cstdint>
 #include <memory>
@@ -22,9 +29,11 @@ struct SplatVoxel {
 
 class SplatVoxels {
  public:
-  explicit SplatVoxels(const ClassifiedVolume& volume);
+  enum class Set { kVisible, kReconstruction };
+  SplatVoxels(const ClassifiedVolume& volume, Set set);
   // The classification's instance, built on first use.
-  static std::shared_ptr<const SplatVoxels> of(const ClassifiedVolume& volume);
+  static std::shared_ptr<const SplatVoxels> of(const ClassifiedVolume& volume,
+                                               Set set = Set::kVisible);
 
   std::span<const SplatVoxel> voxels() const { return voxels_; }
   // Per entry and per world unit: the extinction that scatters, and (× kt) that attenuates.

@@ -17,59 +17,128 @@ namespace {
 // it becomes active rather than on each of the 3–4 sheets it reaches, and its coefficients.
 struct ActiveSplat {
   std::uint32_t id;
-  int xa, xb, ya, yb;
-  std::size_t weights;  // offset of the box's (xb − xa + 1)(yb − ya + 1) lengths in the pool
-  std::size_t coefs;    // offset of sigma_alpha, kt sigma_t, k colour in the pool
+  int xa = 0, xb = -1, ya = 0, yb = -1;
+  std::size_t weights = 0;  // offset of the box's (xb − xa + 1)(yb − ya + 1) lengths in the pool
+  std::size_t coefs = 0;  // offset of its payload (SheetContent::payload) in the pool
 };
 
-// Composite the sheet like one raycast sample: α = 1 − exp(−τ), colour = E / τ; the pixels
-// are then cleared for the next sheet. (Extinctions are never negative, so a pixel with no
-// optical depth holds no colour either.)
-void compositeSheet(std::vector<float>& sheet, int stride, int k, int kt, int rx0, int rx1,
-                    int ry0, int ry1, BandState& state) {
-  const int width = state.width(), y0 = state.y0();
-  for (int y = ry0; y <= ry1; ++y)
-    for (int x = rx0; x <= rx1; ++x) {
-      float* b = &sheet[(static_cast<std::size_t>(y - y0) * width + x) * stride];
-      const float tau = b[0];
-      bool empty = !(tau > 0.f);
-      for (int c = 0; c < kt && empty; ++c) empty = !(b[1 + c] > 0.f);
-      if (empty) continue;  // nothing reached this pixel in this sheet: it is still all zero
-      const std::size_t p = state.pixel(x, y);
-      // exp(−τ) serves the transmission too where the sheet attenuates as it scatters there.
-      const float kept = fastExp(-tau);
-      if (tau > 0.f) {
-        const float alpha_per_tau = (1.f - kept) / tau;
-        for (int c = 0; c < k; ++c) {
-          const float t = state.transmittance(kt > 1 ? c : 0)[p];
-          state.scattered(c)[p] += t * alpha_per_tau * b[1 + kt + c];
-        }
-      }
-      bool attenuated = false;
-      for (int c = 0; c < kt; ++c)
-        if (b[1 + c] > 0.f) {
-          state.transmittance(c)[p] *= b[1 + c] == tau ? kept : fastExp(-b[1 + c]);
-          attenuated = true;
-        }
-      if (attenuated) state.update(x, y);
-      std::fill(b, b + stride, 0.f);
+// Composite one sheet pixel like one raycast sample: α = 1 − exp(−τ), colour = E / τ, from the
+// optical depth τ of the extinction that scatters, kt optical depths of the extinction that
+// attenuates and the k opacity-weighted colours E. (Extinctions are never negative, so a pixel
+// with no optical depth holds no colour either.)
+void compositePixel(int x, int y, float tau, const float* tau_t, const float* e, int k, int kt,
+                    BandState& state) {
+  const std::size_t p = state.pixel(x, y);
+  // exp(−τ) serves the transmission too where the sheet attenuates as it scatters there.
+  const float kept = fastExp(-tau);
+  if (tau > 0.f) {
+    const float alpha_per_tau = (1.f - kept) / tau;
+    for (int c = 0; c < k; ++c) {
+      const float t = state.transmittance(kt > 1 ? c : 0)[p];
+      state.scattered(c)[p] += t * alpha_per_tau * e[c];
     }
+  }
+  bool attenuated = false;
+  for (int c = 0; c < kt; ++c)
+    if (tau_t[c] > 0.f) {
+      state.transmittance(c)[p] *= tau_t[c] == tau ? kept : fastExp(-tau_t[c]);
+      attenuated = true;
+    }
+  if (attenuated) state.update(x, y);
 }
 
-// One band, sheet by sheet. The sheet buffer holds per pixel: the optical depth of the
-// scattering extinction, kt optical depths of the attenuating extinction, and k
-// opacity-weighted colours. Splats are front to back, and every splat of one render reaches
+// What a sheet pixel accumulates, and how it becomes a sample.
+//
+// Pre-classified: the splats' own optical depths and opacity-weighted colours add up.
+// Post-classified ("splatting without the blur", Mueller, Möller & Crawfis 1999): the kernels'
+// world lengths L, and their sums weighted by each splat's bin coordinate, shade and highlight;
+// the pixel's value is the normalised sum, classified and shaded there, over the length L.
+class SheetContent {
+ public:
+  SheetContent(const SplatList& list, bool post)
+      : list_(list),
+        post_(post),
+        k_(list.channels()),
+        kt_(list.transmittanceChannels()),
+        sigma_t_(kt_),
+        colour_(k_),
+        tau_t_(kt_),
+        e_(k_) {}
+  int stride() const { return post_ ? 4 : 1 + kt_ + k_; }
+  // Appends what a splat contributes per unit length: post, its bin, shade and highlight; pre,
+  // sigma_alpha, kt sigma_t and k colours.
+  void payload(const Splat& s, std::vector<float>& pool) {
+    if (post_) {
+      pool.insert(pool.end(), {static_cast<float>(s.entry) + s.frac, s.shade, s.highlight});
+      return;
+    }
+    SplatCoefficients coef{0.f, sigma_t_, colour_};
+    list_.coefficients(s, coef);
+    pool.push_back(coef.sigma_alpha);
+    pool.insert(pool.end(), sigma_t_.begin(), sigma_t_.end());
+    pool.insert(pool.end(), colour_.begin(), colour_.end());
+  }
+  // A splat's kernel over `length` world units of the sheet at pixel b.
+  void add(const float* payload, float length, float* b) const {
+    if (post_) {
+      b[0] += length;
+      for (int c = 0; c < 3; ++c) b[1 + c] += length * payload[c];
+      return;
+    }
+    const float scatter = payload[0] * length;
+    b[0] += scatter;
+    for (int c = 0; c < kt_; ++c) b[1 + c] += payload[1 + c] * length;
+    for (int c = 0; c < k_; ++c) b[1 + kt_ + c] += scatter * payload[1 + kt_ + c];
+  }
+  // Composites pixel (x, y) of the sheet, if anything reached it, and clears it.
+  void composite(float* b, int x, int y, BandState& state) {
+    bool empty = !(b[0] > 0.f);
+    for (int c = 0; c < kt_ && empty && !post_; ++c) empty = !(b[1 + c] > 0.f);
+    if (empty) return;  // nothing reached this pixel in this sheet: it is still all zero
+    if (!post_) {
+      compositePixel(x, y, b[0], b + 1, b + 1 + kt_, k_, kt_, state);
+    } else {
+      const float length = b[0], inv = 1.f / length;
+      SplatCoefficients coef{0.f, sigma_t_, colour_};
+      list_.classifyBin(b[1] * inv, b[2] * inv, b[3] * inv, coef);
+      const float tau = coef.sigma_alpha * length;
+      for (int c = 0; c < kt_; ++c) tau_t_[c] = sigma_t_[c] * length;
+      for (int c = 0; c < k_; ++c) e_[c] = tau * colour_[c];
+      compositePixel(x, y, tau, tau_t_.data(), e_.data(), k_, kt_, state);
+    }
+    std::fill(b, b + stride(), 0.f);
+  }
+
+ private:
+  const SplatList& list_;
+  bool post_;
+  int k_, kt_;
+  std::vector<float> sigma_t_, colour_, tau_t_, e_;  // scratch
+};
+
+// Composite the sheet's dirty rectangle; its pixels are cleared for the next sheet.
+void compositeSheet(std::vector<float>& sheet, SheetContent& content, int rx0, int rx1, int ry0,
+                    int ry1, BandState& state) {
+  const int width = state.width(), y0 = state.y0(), stride = content.stride();
+  for (int y = ry0; y <= ry1; ++y)
+    for (int x = rx0; x <= rx1; ++x)
+      content.composite(&sheet[(static_cast<std::size_t>(y - y0) * width + x) * stride], x, y,
+                        state);
+}
+
+// One band, sheet by sheet; the sheet buffer holds per pixel what SheetContent accumulates.
+// Splats are front to back, and every splat of one render reaches
 // the same depth either side (the kernel seen along the view axis), so they become active and
 // retire in the same order: the ones still in reach are always active[live, end).
 void compositeBand(const SplatList& list, const FootprintTable& table,
                    std::span<const std::uint32_t> ids, double first_sheet, double thickness,
-                   BandState& state) {
-  const int k = list.channels(), kt = list.transmittanceChannels();
-  const int stride = 1 + kt + k;
+                   bool post, BandState& state) {
+  SheetContent content(list, post);
+  const int stride = content.stride();
   const int width = state.width(), y0 = state.y0(), y1 = state.y1();
   std::vector<float> sheet(static_cast<std::size_t>(y1 - y0) * width * stride, 0.f);
   const auto splats = list.splats();
-  const float cut = static_cast<float>(table.cutoff()), cut2 = table.cutoffSquared();
+  const float cut2 = table.cutoffSquared();
   const float depth_sigma = list.maxDepthSigma();
   const float depth_cut = static_cast<float>(std::min(table.cutoff(), kSheetDepthCut));
   const float reach = depth_cut * depth_sigma;
@@ -78,9 +147,8 @@ void compositeBand(const SplatList& list, const FootprintTable& table,
   };
 
   std::vector<ActiveSplat> active;  // front to back; those before `live` have retired
-  std::vector<float> pool;          // weights and coefficients of the active splats
+  std::vector<float> pool;          // weights and payloads of the active splats
   std::size_t live = 0, next = 0;   // next: the first of ids not yet active
-  std::vector<float> sigma_t(kt), colour(k);
   long j = 0;
   while (!state.allDone()) {
     if (live == active.size()) {
@@ -113,11 +181,7 @@ void compositeBand(const SplatList& list, const FootprintTable& table,
       pixelRange(s.y, fp.half_h, y1, a.ya, a.yb);
       a.ya = std::max(a.ya, y0);
       a.coefs = pool.size();
-      SplatCoefficients coef{0.f, sigma_t, colour};
-      list.coefficients(s, coef);
-      pool.push_back(coef.sigma_alpha);
-      pool.insert(pool.end(), sigma_t.begin(), sigma_t.end());
-      pool.insert(pool.end(), colour.begin(), colour.end());
+      content.payload(s, pool);
       a.weights = pool.size();
       for (int y = a.ya; y <= a.yb; ++y) {
         const float dy = y + 0.5f - s.y;
@@ -138,10 +202,7 @@ void compositeBand(const SplatList& list, const FootprintTable& table,
       if (a.xa > a.xb || a.ya > a.yb) continue;
       const float share = below((z1 - s.depth) / depth_sigma) - below((z0 - s.depth) / depth_sigma);
       if (!(share > 0.f) || state.columnsDone(a.xa, a.xb)) continue;
-      const float* coef = &pool[a.coefs];
-      const float sigma_alpha = coef[0];
-      const float* st = coef + 1;
-      const float* col = coef + 1 + kt;
+      const float* payload = &pool[a.coefs];
       const float* w = &pool[a.weights];
       rx0 = std::min(rx0, a.xa);
       rx1 = std::max(rx1, a.xb);
@@ -151,14 +212,11 @@ void compositeBand(const SplatList& list, const FootprintTable& table,
         for (int x = a.xa; x <= a.xb; ++x, ++w) {
           if (!(*w > 0.f) || state.done(x, y)) continue;
           const float length = share * *w;  // world length of the kernel in this sheet
-          float* b = &sheet[(static_cast<std::size_t>(y - y0) * width + x) * stride];
-          const float scatter = sigma_alpha * length;
-          b[0] += scatter;
-          for (int c = 0; c < kt; ++c) b[1 + c] += st[c] * length;
-          for (int c = 0; c < k; ++c) b[1 + kt + c] += scatter * col[c];
+          content.add(payload, length,
+                      &sheet[(static_cast<std::size_t>(y - y0) * width + x) * stride]);
         }
     }
-    compositeSheet(sheet, stride, k, kt, rx0, rx1, ry0, ry1, state);
+    compositeSheet(sheet, content, rx0, rx1, ry0, ry1, state);
     ++j;
   }
 }
@@ -166,7 +224,7 @@ void compositeBand(const SplatList& list, const FootprintTable& table,
 }  // namespace
 
 void compositeSheets(const SplatList& list, const FootprintTable& table, const Bands& bands,
-                     double thickness, float termination, LightIndependentImage& image,
+                     double thickness, bool post, float termination, LightIndependentImage& image,
                      ProgressCounter& progress) {
   const auto splats = list.splats();
   // One sheet lattice for the whole image, so neighbouring bands agree.
@@ -177,7 +235,7 @@ void compositeSheets(const SplatList& list, const FootprintTable& table, const B
   for (int b = 0; b < bands.count; ++b) {
     BandState state(image, b * bands.rows, std::min((b + 1) * bands.rows, image.height()),
                     termination);
-    compositeBand(list, table, bands.of(b), first_sheet, thickness, state);
+    compositeBand(list, table, bands.of(b), first_sheet, thickness, post, state);
     progress.advance();
   }
 }

@@ -3,7 +3,9 @@
 // kernels are sliced by sheets parallel to the image plane, `thickness` apart in depth; within a
 // sheet the slices add up (optical depth and opacity-weighted colour per pixel), and the sheets
 // are composited front to back like the raycaster's samples, so overlapping kernels do not bleed
-// into each other and the result does not depend on the order within a sheet.
+// into each other and the result does not depend on the order within a sheet. `post`: the
+// sheets hold the reconstructed value, classified per sheet pixel (the list must hold the
+// reconstruction's voxels); otherwise the splats' own classified coefficients.
 
 #include "renderers/core/renderer.h"
 #include "renderers/core/splat_footprint.h"
@@ -12,7 +14,7 @@
 namespace svr::splat {
 
 void compositeSheets(const SplatList& list, const FootprintTable& table, const Bands& bands,
-                     double thickness, float termination, LightIndependentImage& image,
+                     double thickness, bool post, float termination, LightIndependentImage& image,
                      ProgressCounter& progress);
 
 }  // namespace svr::splat

@@ -92,8 +92,8 @@ std::vector<VoxelShade> shadeVoxels(const SplatVoxels& sv, const ClassifiedVolum
 }  // namespace
 
 SplatList::SplatList(const ClassifiedVolume& cv, const RenderRequest& req,
-                     const Projector& projector)
-    : cv_(cv), voxels_(SplatVoxels::of(cv)), k_(cv.k), kt_(cv.t_channels) {
+                     const Projector& projector, SplatVoxels::Set set)
+    : cv_(cv), voxels_(SplatVoxels::of(cv, set)), k_(cv.k), kt_(cv.t_channels) {
   ProjectedVoxels projected = projectVoxels(*voxels_, cv, projector, req.width, req.height);
   const auto voxels = voxels_->voxels();
   const bool any_specular = req.shading.specular > 0.0 &&
@@ -112,15 +112,16 @@ SplatList::SplatList(const ClassifiedVolume& cv, const RenderRequest& req,
   for (const Footprint& fp : footprints_) max_depth_sigma_ = std::max(max_depth_sigma_, fp.depth_sigma);
 }
 
-void SplatList::coefficients(const Splat& s, SplatCoefficients& out) const {
+void SplatList::classify(int e, float frac, float shade, float highlight,
+                         SplatCoefficients& out) const {
   // The same blend as every backend's samples, weighted by the scattering extinction.
-  const int entry[2] = {s.entry, std::min(s.entry + 1, cv_.entries - 1)};
-  const float w[2] = {1.f - s.frac, s.frac};
+  const int entry[2] = {e, std::min(e + 1, cv_.entries - 1)};
+  const float w[2] = {1.f - frac, frac};
   float spec_w;
   blendEntries(cv_, voxels_->sigmaAlpha().data(), voxels_->sigmaT().data(), entry, w, 2, k_, kt_,
                out.sigma_alpha, spec_w, out.colour.data(), out.sigma_t.data());
-  const float highlight = s.highlight * spec_w;
-  for (int c = 0; c < k_; ++c) out.colour[c] = out.colour[c] * s.shade + cv_.white[c] * highlight;
+  const float white = highlight * spec_w;
+  for (int c = 0; c < k_; ++c) out.colour[c] = out.colour[c] * shade + cv_.white[c] * white;
 }
 
 }  // namespace svr::splat

@@ -1,7 +1,8 @@
 #pragma once
-// The splats of one frame: every voxel of the classification's splat list (splat_voxels.h,
-// classified at the voxel — pre-classification), shaded with the same Phong model as every
-// backend, projected to the image and sorted front to back.
+// The splats of one frame: every voxel of one of the classification's splat lists
+// (splat_voxels.h: the visible voxels, for pre-classification; or every voxel the reconstruction
+// needs, for post-classification), shaded with the same Phong model as every backend, projected
+// to the image and sorted front to back.
 
 #include <algorithm>
 #include <cmath>
@@ -36,7 +37,7 @@ struct SplatCoefficients {
 class SplatList {
  public:
   SplatList(const ClassifiedVolume& volume, const RenderRequest& request,
-            const Projector& projector);
+            const Projector& projector, SplatVoxels::Set set);
   std::span<const Splat> splats() const { return splats_; }
   const Footprint& footprint(std::size_t i) const {
     return footprints_.size() == 1 ? footprints_[0] : footprints_[i];
@@ -44,10 +45,21 @@ class SplatList {
   float maxDepthSigma() const { return max_depth_sigma_; }
   int channels() const { return k_; }
   int transmittanceChannels() const { return kt_; }
-  // Fills out.sigma_t and out.colour (caller-owned storage of kt and k floats).
-  void coefficients(const Splat& splat, SplatCoefficients& out) const;
+  // Fills out.sigma_t and out.colour (caller-owned storage of kt and k floats): the splat
+  // classified at its voxel.
+  void coefficients(const Splat& splat, SplatCoefficients& out) const {
+    classify(splat.entry, splat.frac, splat.shade, splat.highlight, out);
+  }
+  // The same for a reconstructed value `bin` (the classification's bin coordinate, as
+  // entry + frac) with the shade and highlight reconstructed beside it.
+  void classifyBin(float bin, float shade, float highlight, SplatCoefficients& out) const {
+    const int entry = std::clamp(static_cast<int>(bin), 0, std::max(cv_.entries - 2, 0));
+    classify(entry, std::clamp(bin - static_cast<float>(entry), 0.f, 1.f), shade, highlight, out);
+  }
 
  private:
+  void classify(int entry, float frac, float shade, float highlight,
+                SplatCoefficients& out) const;
   const ClassifiedVolume& cv_;
   std::shared_ptr<const SplatVoxels> voxels_;
   int k_, kt_;

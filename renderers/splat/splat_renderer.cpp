@@ -8,16 +8,47 @@
 #include "renderers/splat/direct_compositor.h"
 #include "renderers/splat/sheet_compositor.h"
 #include "renderers/splat/splat_list.h"
+#include "spectral/error.h"
 
 namespace svr {
 
 const BackendInfo& SplatRenderer::info() const {
-  static const BackendInfo info{
-      "splat", "Gaussian splats of the pre-classified voxels, sheet-buffer or direct compositing",
-      {.perspective = true, .spectral_transmittance = true, .max_channels = 128},
-      splat::splatOptionSpecs()};
+  static const BackendInfo info = [] {
+    std::vector<OptionSpec> options = splat::splatOptionSpecs();
+    options.push_back(OptionSpec::choice(
+        "classification", {"auto", "post", "pre"},
+        "post: splat the value, shade and highlight into each sheet and classify per sheet pixel "
+        "(Mueller, Möller & Crawfis 1999: sharp at material edges and under zoom; sheet mode, "
+        "scalar volumes); pre: classify at the voxels; auto: post where it applies"));
+    return BackendInfo{"splat",
+                       "Gaussian splats of the voxels, post- or pre-classified, sheet-buffer or "
+                       "direct compositing",
+                       {.perspective = true, .spectral_transmittance = true, .max_channels = 128},
+                       std::move(options)};
+  }();
   return info;
 }
+
+namespace {
+
+// Whether this render classifies per sheet pixel: `auto` does wherever it applies; asking for
+// post where it cannot (direct compositing has no sheet to classify; a label map has no values
+// between its voxels) is an error naming the key.
+bool postClassified(const BackendOptions& options, const splat::SplatSettings& settings,
+                    const ClassifiedVolume& cv) {
+  const std::string& asked = options.choice("classification");
+  if (asked == "pre") return false;
+  const bool sheet = settings.mode == splat::SplatSettings::Mode::kSheet;
+  if (asked == "post" && !sheet)
+    throw Error("splat.classification=post needs splat.mode=sheet: direct compositing "
+                "classifies at the voxels");
+  if (asked == "post" && cv.labels)
+    throw Error("splat.classification=post needs a scalar volume: a label map is classified at "
+                "its voxels");
+  return sheet && !cv.labels;
+}
+
+}  // namespace
 
 LightIndependentImage SplatRenderer::renderImpl(const RenderRequest& req,
                                                 const BackendOptions& options,
@@ -28,14 +59,17 @@ LightIndependentImage SplatRenderer::renderImpl(const RenderRequest& req,
   const splat::Projector projector(req.camera, req.width, req.height, cv.spacing,
                                    settings.kernel);
   const splat::FootprintTable table(settings.kernel.cutoff());
-  const splat::SplatList list(cv, req, projector);
+  const bool post = postClassified(options, settings, cv);
+  const splat::SplatList list(
+      cv, req, projector,
+      post ? splat::SplatVoxels::Set::kReconstruction : splat::SplatVoxels::Set::kVisible);
   constexpr int kBandRows = 8;
   const splat::Bands bands = splat::bandsOf(list, req.height, kBandRows);
   const float termination = static_cast<float>(req.termination);
   if (settings.mode == splat::SplatSettings::Mode::kSheet) {
     const double min_spacing = std::min({cv.spacing.x, cv.spacing.y, cv.spacing.z});
     const double thickness = settings.sheet_voxels * min_spacing;
-    splat::compositeSheets(list, table, bands, thickness, termination, image, progress);
+    splat::compositeSheets(list, table, bands, thickness, post, termination, image, progress);
   } else {
     splat::compositeDirect(list, table, bands, termination, image, progress);
   }
