@@ -33,8 +33,10 @@ LightIndependentImage renderScene(const Scene& scene, const ColourModel& model,
 
 // The same options for both splatting backends (gl's own `mode` picks splatting, its
 // `splat_mode` is the splat backend's `mode`).
+// The gl splats classify at the voxels, so the CPU splats they are held to do too.
 nlohmann::json modeOptions(const std::string& mode) {
-  return {{"splat", {{"mode", mode}}}, {"gl", {{"mode", "splat"}, {"splat_mode", mode}}}};
+  return {{"splat", {{"mode", mode}, {"classification", "pre"}}},
+          {"gl", {{"mode", "splat"}, {"splat_mode", mode}}}};
 }
 
 // A kernel wide enough that a lattice of them sums to a constant to 1e-5 (the default σ = 0.45
