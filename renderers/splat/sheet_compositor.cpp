@@ -14,9 +14,12 @@ namespace {
 
 // A splat while its kernel reaches the current sheet: its footprint box within the band, the
 // kernel's world length at each pixel of the box (0 outside the footprint), computed once when
-// it becomes active rather than on each of the 3–4 sheets it reaches, and its coefficients.
+// it becomes active rather than on each of the 3–4 sheets it reaches, and its coefficients. Its
+// depth is copied here because the splat itself, read through a band's sparse list of ids, is
+// a cache miss each time.
 struct ActiveSplat {
   std::uint32_t id;
+  float depth = 0.f;
   int xa = 0, xb = -1, ya = 0, yb = -1;
   std::size_t weights = 0;  // offset of the box's (xb − xa + 1)(yb − ya + 1) lengths in the pool
   std::size_t coefs = 0;  // offset of its payload (SheetContent::payload) in the pool
@@ -161,7 +164,7 @@ void compositeBand(const SplatList& list, const FootprintTable& table,
                           std::floor((splats[ids[next]].depth - reach - first_sheet) / thickness)));
     }
     const double z0 = first_sheet + j * thickness, z1 = z0 + thickness;
-    while (live < active.size() && splats[active[live].id].depth + reach <= z0) ++live;
+    while (live < active.size() && active[live].depth + reach <= z0) ++live;
     if (live > active.size() / 2 && live < active.size()) {
       // Drop the retired half of the active list and its pool entries.
       const std::size_t from = active[live].coefs;
@@ -174,9 +177,12 @@ void compositeBand(const SplatList& list, const FootprintTable& table,
       }
     }
     while (next < ids.size() && splats[ids[next]].depth - reach < z1) {
+      // The band's ids rise with gaps the hardware prefetcher cannot follow: ask for a later one.
+      constexpr std::size_t kAhead = 8;
+      if (next + kAhead < ids.size()) __builtin_prefetch(&splats[ids[next + kAhead]]);
       const Splat& s = splats[ids[next]];
       const Footprint& fp = list.footprint(ids[next]);
-      ActiveSplat a{ids[next]};
+      ActiveSplat a{ids[next], s.depth};
       pixelRange(s.x, fp.half_w, width, a.xa, a.xb);
       pixelRange(s.y, fp.half_h, y1, a.ya, a.yb);
       a.ya = std::max(a.ya, y0);
@@ -198,9 +204,8 @@ void compositeBand(const SplatList& list, const FootprintTable& table,
     int rx0 = width, rx1 = -1, ry0 = y1, ry1 = y0 - 1;  // the sheet's dirty rectangle
     for (std::size_t i = live; i < active.size(); ++i) {
       const ActiveSplat& a = active[i];
-      const Splat& s = splats[a.id];
       if (a.xa > a.xb || a.ya > a.yb) continue;
-      const float share = below((z1 - s.depth) / depth_sigma) - below((z0 - s.depth) / depth_sigma);
+      const float share = below((z1 - a.depth) / depth_sigma) - below((z0 - a.depth) / depth_sigma);
       if (!(share > 0.f) || state.columnsDone(a.xa, a.xb)) continue;
       const float* payload = &pool[a.coefs];
       const float* w = &pool[a.weights];
