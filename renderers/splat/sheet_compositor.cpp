@@ -12,17 +12,18 @@
 namespace svr::splat {
 namespace {
 
-// A splat while its kernel reaches the current sheet: its footprint box within the band, the
-// kernel's world length at each pixel of the box (0 outside the footprint), computed once when
-// it becomes active rather than on each of the 3–4 sheets it reaches, and its coefficients. Its
-// depth is copied here because the splat itself, read through a band's sparse list of ids, is
-// a cache miss each time.
+// A splat while its kernel reaches the current sheet: its footprint box within the band, per row
+// of the box the chord of its ellipse, the kernel's world length at each pixel of the chords
+// (computed once when it becomes active rather than on each of the 3–4 sheets it reaches), and
+// its coefficients. Its depth is copied here because the splat itself, read through a band's
+// sparse list of ids, is a cache miss each time.
 struct ActiveSplat {
   std::uint32_t id;
   float depth = 0.f;
   int xa = 0, xb = -1, ya = 0, yb = -1;
-  std::size_t weights = 0;  // offset of the box's (xb − xa + 1)(yb − ya + 1) lengths in the pool
-  std::size_t coefs = 0;  // offset of its payload (SheetContent::payload) in the pool
+  std::size_t chords = 0;   // offset of the rows' [lo, hi] pairs in the chord pool
+  std::size_t weights = 0;  // offset of the chords' lengths, row after row, in the pool
+  std::size_t coefs = 0;    // offset of its payload (SheetContent::payload) in the pool
 };
 
 // Composite one sheet pixel like one raycast sample: α = 1 − exp(−τ), colour = E / τ, from the
@@ -151,6 +152,7 @@ void compositeBand(const SplatList& list, const FootprintTable& table,
 
   std::vector<ActiveSplat> active;  // front to back; those before `live` have retired
   std::vector<float> pool;          // weights and payloads of the active splats
+  std::vector<int> chord_pool;      // their rows' chords
   std::size_t live = 0, next = 0;   // next: the first of ids not yet active
   long j = 0;
   while (!state.allDone()) {
@@ -158,6 +160,7 @@ void compositeBand(const SplatList& list, const FootprintTable& table,
       if (next == ids.size()) break;
       active.clear();
       pool.clear();
+      chord_pool.clear();
       live = 0;
       // Jump over empty sheets to the first one the next splat reaches.
       j = std::max(j, static_cast<long>(
@@ -167,13 +170,15 @@ void compositeBand(const SplatList& list, const FootprintTable& table,
     while (live < active.size() && active[live].depth + reach <= z0) ++live;
     if (live > active.size() / 2 && live < active.size()) {
       // Drop the retired half of the active list and its pool entries.
-      const std::size_t from = active[live].coefs;
+      const std::size_t from = active[live].coefs, chords_from = active[live].chords;
       active.erase(active.begin(), active.begin() + static_cast<long>(live));
       live = 0;
       pool.erase(pool.begin(), pool.begin() + static_cast<long>(from));
+      chord_pool.erase(chord_pool.begin(), chord_pool.begin() + static_cast<long>(chords_from));
       for (ActiveSplat& a : active) {
         a.weights -= from;
         a.coefs -= from;
+        a.chords -= chords_from;
       }
     }
     while (next < ids.size() && splats[ids[next]].depth - reach < z1) {
@@ -189,10 +194,14 @@ void compositeBand(const SplatList& list, const FootprintTable& table,
       a.coefs = pool.size();
       content.payload(s, pool);
       a.weights = pool.size();
+      a.chords = chord_pool.size();
       for (int y = a.ya; y <= a.yb; ++y) {
         const float dy = y + 0.5f - s.y;
         const float qy = fp.c * dy * dy, bxy = 2.f * fp.b * dy;
-        for (int x = a.xa; x <= a.xb; ++x) {
+        int lo, hi;
+        ellipseRow(fp, s.x, dy, cut2, a.xa, a.xb, lo, hi);
+        chord_pool.insert(chord_pool.end(), {lo, hi});
+        for (int x = lo; x <= hi; ++x) {
           const float dx = x + 0.5f - s.x;
           const float q = (fp.a * dx + bxy) * dx + qy;
           pool.push_back(q < cut2 ? fp.norm * table.gaussian(q) : 0.f);
@@ -209,12 +218,13 @@ void compositeBand(const SplatList& list, const FootprintTable& table,
       if (!(share > 0.f) || state.columnsDone(a.xa, a.xb)) continue;
       const float* payload = &pool[a.coefs];
       const float* w = &pool[a.weights];
+      const int* chord = &chord_pool[a.chords];
       rx0 = std::min(rx0, a.xa);
       rx1 = std::max(rx1, a.xb);
       ry0 = std::min(ry0, a.ya);
       ry1 = std::max(ry1, a.yb);
-      for (int y = a.ya; y <= a.yb; ++y)
-        for (int x = a.xa; x <= a.xb; ++x, ++w) {
+      for (int y = a.ya; y <= a.yb; ++y, chord += 2)
+        for (int x = chord[0]; x <= chord[1]; ++x, ++w) {
           if (!(*w > 0.f) || state.done(x, y)) continue;
           const float length = share * *w;  // world length of the kernel in this sheet
           content.add(payload, length,
