@@ -15,8 +15,24 @@ float perUnitLength(float transmission, double step) {
   return static_cast<float>(-std::log(std::max(transmission, 1e-30f)) / step);
 }
 
-// The smallest and largest value of the 3 × 3 neighbourhood of each voxel of slice z (clamped
-// at the volume's sides), x fastest.
+// Widens each voxel's [lo, hi] of one slice by its neighbours' along x (axis 0) or y (axis 1),
+// clamped at the slice's sides.
+void widenAlong(int axis, int nx, int ny, const float* lo_in, const float* hi_in, float* lo,
+                float* hi) {
+  const std::size_t step = axis == 0 ? 1 : static_cast<std::size_t>(nx);
+  for (int y = 0; y < ny; ++y)
+    for (int x = 0; x < nx; ++x) {
+      const std::size_t i = static_cast<std::size_t>(y) * nx + x;
+      const int at = axis == 0 ? x : y, size = axis == 0 ? nx : ny;
+      float a = lo_in[i], b = hi_in[i];
+      if (at > 0) a = std::min(a, lo_in[i - step]), b = std::max(b, hi_in[i - step]);
+      if (at + 1 < size) a = std::min(a, lo_in[i + step]), b = std::max(b, hi_in[i + step]);
+      lo[i] = a;
+      hi[i] = b;
+    }
+}
+
+// The smallest and largest value of the 3 × 3 neighbourhood of each voxel of slice z, x fastest.
 void sliceNeighbourhoodRange(const ClassifiedVolume& cv, int z, std::vector<float>& lo,
                              std::vector<float>& hi, std::vector<float>& row_lo,
                              std::vector<float>& row_hi) {
@@ -25,26 +41,10 @@ void sliceNeighbourhoodRange(const ClassifiedVolume& cv, int z, std::vector<floa
   const float* v = cv.values.data() + plane * z;
   row_lo.resize(plane);
   row_hi.resize(plane);
-  for (int y = 0; y < ny; ++y)
-    for (int x = 0; x < nx; ++x) {
-      const std::size_t i = static_cast<std::size_t>(y) * nx + x;
-      float a = v[i], b = v[i];
-      if (x > 0) a = std::min(a, v[i - 1]), b = std::max(b, v[i - 1]);
-      if (x + 1 < nx) a = std::min(a, v[i + 1]), b = std::max(b, v[i + 1]);
-      row_lo[i] = a;
-      row_hi[i] = b;
-    }
   lo.resize(plane);
   hi.resize(plane);
-  for (int y = 0; y < ny; ++y)
-    for (int x = 0; x < nx; ++x) {
-      const std::size_t i = static_cast<std::size_t>(y) * nx + x;
-      float a = row_lo[i], b = row_hi[i];
-      if (y > 0) a = std::min(a, row_lo[i - nx]), b = std::max(b, row_hi[i - nx]);
-      if (y + 1 < ny) a = std::min(a, row_lo[i + nx]), b = std::max(b, row_hi[i + nx]);
-      lo[i] = a;
-      hi[i] = b;
-    }
+  widenAlong(0, nx, ny, v, v, row_lo.data(), row_hi.data());
+  widenAlong(1, nx, ny, row_lo.data(), row_hi.data(), lo.data(), hi.data());
 }
 
 }  // namespace
