@@ -78,34 +78,40 @@ TEST(Raycast, SpectralSlabTransmittancePerChannel) {
 // registered backend and for rgb, factor:k and spectral:n with projected light matrices (the
 // light's coefficients multiply the materials' componentwise, which is what baking means; full
 // light matrices take the light's whole spectrum, which no componentwise bake can: their
-// relit pixels are checked against the spectral product in PostIllumination tests).
+// relit pixels are checked against the spectral product in PostIllumination tests). Two scenes:
+// the phantom, a label map, and a scalar slab with a spectral absorber, whose splat sheets are
+// classified per sheet pixel.
 TEST(Raycast, RelitEqualsBakedInLight) {
-  const Scene scene = test::phantomScene();
+  const Scene phantom = test::phantomScene();
+  const Scene slab = test::slabScene(0.05, "ColorChecker/cyan", 0.5);
   std::vector<std::unique_ptr<ColourModel>> models;
   models.push_back(makeRgbModel(test::rendererObserver()));
-  models.push_back(makeSceneModel("factor:6/projected", scene, test::rendererObserver()).model);
+  models.push_back(makeSceneModel("factor:6/projected", phantom, test::rendererObserver()).model);
   models.push_back(makeSpectralModel(test::rendererObserver(), 31, LightMatrixKind::kProjected));
-  for (const std::string& name : rendererNames()) {
-    const auto renderer = makeRenderer(name);
-    for (const auto& model : models) {
-      SCOPED_TRACE(name + " " + model->name());
-      const Spectrum spectrum =
-          test::rendererObserver().unitLuminance(test::rendererLibrary().get("A"));
-      const Eigen::VectorXd light = model->project(spectrum);
-      const auto independent = renderScene(scene, *model, *renderer);
-      const auto baked = renderScene(scene, *model, *renderer, light);
-      PostIlluminator post(*model);
-      std::vector<float> relit(3 * independent.pixels()), direct(relit.size());
-      post.setLight(spectrum);
-      post.relightLinear(independent, relit, RelitSpace::kXyz);
-      ASSERT_TRUE(model->white().isApprox(Eigen::VectorXd::Ones(model->channels())));
-      post.setLight(Spectrum::constant(spectrum.grid(), 1.0));  // coefficients: all ones
-      post.relightLinear(baked, direct, RelitSpace::kXyz);
-      double peak = 0;
-      for (float v : direct) peak = std::max(peak, std::abs(double(v)));
-      ASSERT_GT(peak, 0.01);  // the phantom is visible
-      for (size_t i = 0; i < relit.size(); ++i)
-        ASSERT_NEAR(relit[i], direct[i], 1e-5 * peak) << i;
+  for (const Scene* scene_of : {&phantom, &slab}) {
+    const Scene& scene = *scene_of;
+    for (const std::string& name : rendererNames()) {
+      const auto renderer = makeRenderer(name);
+      for (const auto& model : models) {
+        SCOPED_TRACE((scene_of == &phantom ? "phantom " : "slab ") + name + " " + model->name());
+        const Spectrum spectrum =
+            test::rendererObserver().unitLuminance(test::rendererLibrary().get("A"));
+        const Eigen::VectorXd light = model->project(spectrum);
+        const auto independent = renderScene(scene, *model, *renderer);
+        const auto baked = renderScene(scene, *model, *renderer, light);
+        PostIlluminator post(*model);
+        std::vector<float> relit(3 * independent.pixels()), direct(relit.size());
+        post.setLight(spectrum);
+        post.relightLinear(independent, relit, RelitSpace::kXyz);
+        ASSERT_TRUE(model->white().isApprox(Eigen::VectorXd::Ones(model->channels())));
+        post.setLight(Spectrum::constant(spectrum.grid(), 1.0));  // coefficients: all ones
+        post.relightLinear(baked, direct, RelitSpace::kXyz);
+        double peak = 0;
+        for (float v : direct) peak = std::max(peak, std::abs(double(v)));
+        ASSERT_GT(peak, 0.01);  // the scene is visible
+        for (size_t i = 0; i < relit.size(); ++i)
+          ASSERT_NEAR(relit[i], direct[i], 1e-5 * peak) << i;
+      }
     }
   }
 }
