@@ -43,13 +43,25 @@ inline void blendEntries(const ClassifiedVolume& cv, const float* alpha_table,
   }
 }
 
-// The two classification entries a scalar value falls between, and the weight of the upper.
-inline void binOf(const ClassifiedVolume& cv, float value, int& e0, int& e1, float& frac) {
-  const float bin = std::clamp(static_cast<float>((value - cv.value_lo) * cv.value_scale), 0.f,
-                               static_cast<float>(cv.entries - 1));
+// A scalar value's bin coordinate in the classification table (entry + fraction, not yet
+// clamped to the table). It is linear in the value, so backends that interpolate may store and
+// interpolate bin coordinates instead of values.
+inline float binCoordinate(const ClassifiedVolume& cv, float value) {
+  return static_cast<float>((value - cv.value_lo) * cv.value_scale);
+}
+
+// The two classification entries a bin coordinate falls between (clamped to the table), and
+// the weight of the upper.
+inline void entriesOfBin(const ClassifiedVolume& cv, float bin, int& e0, int& e1, float& frac) {
+  bin = std::clamp(bin, 0.f, static_cast<float>(cv.entries - 1));
   e0 = std::min(static_cast<int>(bin), std::max(cv.entries - 2, 0));
   e1 = std::min(e0 + 1, cv.entries - 1);
   frac = bin - e0;
+}
+
+// The two classification entries a scalar value falls between, and the weight of the upper.
+inline void binOf(const ClassifiedVolume& cv, float value, int& e0, int& e1, float& frac) {
+  entriesOfBin(cv, binCoordinate(cv, value), e0, e1, frac);
 }
 
 // The Phong model of every backend, two-sided (|n·l|, as volume boundaries have no outside):
@@ -65,13 +77,21 @@ struct PhongSetup {
   // Below this |n·h| the highlight |n·h|^shininess is under 2⁻²⁴ — less than float rounding of
   // the lit colour it is added to — and is taken as 0 without evaluating the power.
   float highlight_floor;
+  // The shininess when it is a whole number from 1 to 1024 (scenes' usual 24, 64, …), else 0:
+  // the highlight is then a few multiplications (square and multiply), exact to float rounding,
+  // instead of unitPower's logarithm and exponential, a third of a shear-warp sample's work.
+  int whole_shininess;
   PhongSetup(const Shading& s, const glm::dvec3& light_dir, const glm::dvec3& half_dir)
       : ambient(static_cast<float>(s.ambient)),
         diffuse(static_cast<float>(s.diffuse)),
         specular(static_cast<float>(s.specular)),
         shininess(static_cast<float>(s.shininess)),
         highlight_floor(s.shininess > 0 ? static_cast<float>(std::pow(0x1p-24, 1.0 / s.shininess))
-                                        : 0.f) {
+                                        : 0.f),
+        whole_shininess(s.shininess >= 1 && s.shininess <= 1024 &&
+                                s.shininess == std::floor(s.shininess)
+                            ? static_cast<int>(s.shininess)
+                            : 0) {
     setDirections(light_dir, half_dir);
   }
   // Another view direction (a perspective camera's next ray), the same shading.
@@ -83,6 +103,15 @@ struct PhongSetup {
   }
 };
 
+// x^n for a whole n ≥ 1, by squaring and multiplying (the loop's branches depend on n alone,
+// which is the same for every sample of a render).
+[[gnu::always_inline]] inline float wholePower(float x, int n) {
+  float result = 1.f;
+  for (float square = x; n > 0; n >>= 1, square *= square)
+    if (n & 1) result *= square;
+  return result;
+}
+
 // Normals are −∇f/|∇f|; where the gradient vanishes (inside a uniform region) there is no
 // surface, and the sample is lit fully and without highlight.
 [[gnu::always_inline]] inline PhongTerms phong(const PhongSetup& p, const float g[3]) {
@@ -92,8 +121,11 @@ struct PhongSetup {
   const float nl = (g[0] * p.light[0] + g[1] * p.light[1] + g[2] * p.light[2]) * inv_len;
   const float nh = (g[0] * p.half[0] + g[1] * p.half[1] + g[2] * p.half[2]) * inv_len;
   const float cos_h = std::min(std::abs(nh), 1.f);
-  return {p.ambient + p.diffuse * std::abs(nl),
-          cos_h > p.highlight_floor ? p.specular * unitPower(cos_h, p.shininess) : 0.f};
+  float highlight = 0.f;
+  if (cos_h > p.highlight_floor)
+    highlight = p.specular * (p.whole_shininess > 0 ? wholePower(cos_h, p.whole_shininess)
+                                                    : unitPower(cos_h, p.shininess));
+  return {p.ambient + p.diffuse * std::abs(nl), highlight};
 }
 
 }  // namespace svr

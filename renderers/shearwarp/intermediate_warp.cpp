@@ -54,41 +54,51 @@ void warpToFinal(const IntermediateImage& im, const ShearWarpFactorization& f,
   std::vector<float> empty(channels, 0.f);
   std::fill(empty.begin() + im.s_channels, empty.end(), 1.f);
   const std::size_t row_stride = static_cast<std::size_t>(im.width) * channels;
+  const auto blend = [&](std::size_t at, const float* p00, const float* p10, const float* p01,
+                         const float* p11, float fu, float fv) {
+    const float w00 = (1 - fu) * (1 - fv), w10 = fu * (1 - fv), w01 = (1 - fu) * fv,
+                w11 = fu * fv;
+    for (int c = 0; c < channels; ++c)
+      planes[c * pixels + at] = w00 * p00[c] + w10 * p10[c] + w01 * p01[c] + w11 * p11[c];
+  };
 
 #pragma omp parallel for schedule(static)
   for (int y = 0; y < height; ++y) {
     const double py = y + 0.5;
     int inner0, inner1;
     interiorRange(f, im, py, width, inner0, inner1);
-    for (int x = 0; x < width; ++x) {
+    // Along a row the warped coordinates are linear in px.
+    const double u_row = f.warp_u[0] + f.warp_u[2] * py, v_row = f.warp_v[0] + f.warp_v[2] * py;
+    const std::size_t row_index = static_cast<std::size_t>(y) * width;
+    // Inside: all four taps in the image and both coordinates ≥ 0, so truncation is the floor
+    // (std::floor is a libm call on the baseline x86-64 target).
+    for (int x = inner0; x < inner1; ++x) {
       const double px = x + 0.5;
-      const double u = f.warp_u[0] + f.warp_u[1] * px + f.warp_u[2] * py;
-      const double v = f.warp_v[0] + f.warp_v[1] * px + f.warp_v[2] * py;
-      const double uf = std::floor(u), vf = std::floor(v);
-      const float fu = static_cast<float>(u - uf), fv = static_cast<float>(v - vf);
-      const float w00 = (1 - fu) * (1 - fv), w10 = fu * (1 - fv), w01 = (1 - fu) * fv,
-                  w11 = fu * fv;
-      const std::size_t px_index = static_cast<std::size_t>(y) * width + x;
-      const float *p00, *p10, *p01, *p11;
-      if (x >= inner0 && x < inner1) {
-        p00 = im.pixel(static_cast<int>(uf), static_cast<int>(vf));
-        p10 = p00 + channels;
-        p01 = p00 + row_stride;
-        p11 = p01 + channels;
-      } else {
-        // Far outside: avoid int overflow, it is empty anyway.
-        const bool inside = uf > -2 && vf > -2 && uf < im.width + 1 && vf < im.height + 1;
-        const int u0 = inside ? static_cast<int>(uf) : -2, v0 = inside ? static_cast<int>(vf) : -2;
-        const auto tap = [&](int uu, int vv) {
-          return uu >= 0 && vv >= 0 && uu < im.width && vv < im.height ? im.pixel(uu, vv)
-                                                                        : empty.data();
-        };
-        p00 = tap(u0, v0), p10 = tap(u0 + 1, v0), p01 = tap(u0, v0 + 1), p11 = tap(u0 + 1, v0 + 1);
-      }
-      for (int c = 0; c < channels; ++c)
-        planes[c * pixels + px_index] =
-            w00 * p00[c] + w10 * p10[c] + w01 * p01[c] + w11 * p11[c];
+      const double u = u_row + f.warp_u[1] * px, v = v_row + f.warp_v[1] * px;
+      const int iu = static_cast<int>(u), iv = static_cast<int>(v);
+      const float* p00 = im.pixel(iu, iv);
+      blend(row_index + x, p00, p00 + channels, p00 + row_stride, p00 + row_stride + channels,
+            static_cast<float>(u - iu), static_cast<float>(v - iv));
     }
+    // The border pixels, with every tap checked.
+    const auto border = [&](int x) {
+      const double px = x + 0.5;
+      const double u = u_row + f.warp_u[1] * px, v = v_row + f.warp_v[1] * px;
+      if (!(u >= -1.0 && v >= -1.0 && u < im.width && v < im.height)) {  // no tap inside
+        for (int c = 0; c < channels; ++c) planes[c * pixels + row_index + x] = empty[c];
+        return;
+      }
+      const double uf = std::floor(u), vf = std::floor(v);
+      const int u0 = static_cast<int>(uf), v0 = static_cast<int>(vf);
+      const auto tap = [&](int uu, int vv) {
+        return uu >= 0 && vv >= 0 && uu < im.width && vv < im.height ? im.pixel(uu, vv)
+                                                                      : empty.data();
+      };
+      blend(row_index + x, tap(u0, v0), tap(u0 + 1, v0), tap(u0, v0 + 1), tap(u0 + 1, v0 + 1),
+            static_cast<float>(u - uf), static_cast<float>(v - vf));
+    };
+    for (int x = 0; x < inner0; ++x) border(x);
+    for (int x = std::max(inner1, inner0); x < width; ++x) border(x);
   }
 }
 

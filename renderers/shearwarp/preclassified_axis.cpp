@@ -4,6 +4,7 @@
 #include <cmath>
 #include <utility>
 
+#include "renderers/core/classified_sample.h"
 #include "renderers/core/volume.h"
 
 namespace svr::shearwarp {
@@ -72,9 +73,9 @@ PreclassifiedAxis::PreclassifiedAxis(const ClassifiedVolume& cv,
         int e[2] = {0, 0};
         float w[2] = {1.f, 0.f};
         if (cv.labels) {
-          e[0] = e[1] = static_cast<int>(voxels[i].value);
+          e[0] = e[1] = static_cast<int>(voxels[i].bin);
         } else {
-          binOf(cv, voxels[i].value, e[0], e[1], w[1]);
+          entriesOfBin(cv, voxels[i].bin, e[0], e[1], w[1]);
           w[0] = 1.f - w[1];
         }
         for (int n = 0; n < 2; ++n) {

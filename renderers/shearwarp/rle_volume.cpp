@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "renderers/core/classified_sample.h"
 #include "renderers/core/volume.h"
 #include "spectral/error.h"
 
@@ -49,7 +50,7 @@ void rowBins(const ClassifiedVolume& cv, const RowAddress& row, int n, BinRange*
   }
 }
 
-// The voxel records of voxels lo .. hi of a row: value (or label) and the central differences
+// The voxel records of voxels lo .. hi of a row: bin coordinate (or label) and the central differences
 // of the shading field, clamped at the border as the raycaster's, in world units.
 void appendRowRecords(const ClassifiedVolume& cv, const int p0[3], int axis_i, int lo, int hi,
                       std::vector<VoxelRecord>& out) {
@@ -65,7 +66,7 @@ void appendRowRecords(const ClassifiedVolume& cv, const int p0[3], int axis_i, i
     p[axis_i] = i;
     const std::size_t index = p[0] * stride[0] + p[1] * stride[1] + p[2] * stride[2];
     VoxelRecord rec;
-    rec.value = cv.labels ? static_cast<float>(cv.label[index]) : cv.values[index];
+    rec.bin = cv.labels ? static_cast<float>(cv.label[index]) : binCoordinate(cv, cv.values[index]);
     for (int a = 0; a < 3; ++a) {
       const std::size_t down = p[a] > 0 ? stride[a] : 0;
       const std::size_t up = p[a] + 1 < d[a] ? stride[a] : 0;

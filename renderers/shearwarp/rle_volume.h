@@ -10,7 +10,7 @@
 // volumes: the opacity table over the corners' value range; label maps: all four labels
 // transparent). The encoding stores, per cell row, the runs of non-transparent cells (the
 // transparent runs are the gaps between them and are never visited), and per voxel row the
-// voxel records (value or label, and the precomputed world-space gradient of the shading field)
+// voxel records (bin coordinate or label, and the precomputed world-space gradient of the shading field)
 // of the span of voxels that non-transparent cells touch. Transparent space costs nothing.
 
 #include <array>
@@ -25,7 +25,9 @@
 namespace svr::shearwarp {
 
 struct VoxelRecord {
-  float value;        // the voxel's value (label maps: its label number)
+  // The voxel's bin coordinate (classified_sample.h's binCoordinate: linear in the value, so a
+  // sample interpolates bins directly); label maps: its label number.
+  float bin;
   float gradient[3];  // ∇ of the shading field, world units, central differences (as raycast)
 };
 

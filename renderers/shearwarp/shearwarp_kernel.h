@@ -5,79 +5,41 @@
 // interpolated value, or interpolate the classified labels; Phong with the interpolated
 // gradient; S += T ⊙ α(ρ·shade + white·spec·highlight); T ⊙= t), with the entries corrected
 // for the slice spacing and laid out as the raycaster's sample table (SliceTable: α, α·s, α·ρ,
-// t per entry, so the opacity-weighted blend needs no division). Included only by
-// shearwarp_renderer.cpp.
+// t per entry, so the opacity-weighted blend needs no division).
 //
 // Skipping: only the runs of non-transparent cells are visited (rle_volume.h), and pixels that
 // became opaque are jumped over through links in the scanline (Lacroute & Levoy §4.2): links[u]
 // = u while pixel u is live, else a pointer towards the next live pixel, path-compressed.
+//
+// Included by one translation unit per instruction set (shearwarp_kernel_portable.cpp,
+// shearwarp_kernel_avx2.cpp), as raycast_kernel.h is: SVR_SHEARWARP_ISA names the namespace
+// its instantiations live in, SVR_SHEARWARP_TARGET the function attribute that compiles them
+// for the instruction set.
+
+#if !defined(SVR_SHEARWARP_ISA)
+#error "define SVR_SHEARWARP_ISA (the instruction set's namespace) before including shearwarp_kernel.h"
+#endif
+#if !defined(SVR_SHEARWARP_TARGET)
+#define SVR_SHEARWARP_TARGET
+#endif
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <vector>
 
-#include "renderers/core/classification.h"
+#include "renderers/core/channel_widths.h"
 #include "renderers/core/classified_sample.h"
-#include "renderers/shearwarp/intermediate_warp.h"
-#include "renderers/shearwarp/preclassified_axis.h"
-#include "renderers/shearwarp/rle_volume.h"
-#include "renderers/shearwarp/shear_warp_factorization.h"
+#include "renderers/shearwarp/shearwarp_kernels.h"
 
-namespace svr::shearwarp {
+namespace svr::shearwarp::SVR_SHEARWARP_ISA {
 
-inline constexpr int kMaxChannels = 128;
+// The helpers and the lambdas in the kernels carry no target attribute of their own (GCC
+// would refuse to inline a target function into a lambda without it): they are always_inline,
+// and compositeBand, which has the attribute, compiles them for its instruction set.
+#define SVR_SHEARWARP_INLINE [[gnu::always_inline]] inline
 
-// Per entry, for the slice spacing: [α, α·specular, α·ρ_0 … α·ρ_{k−1}, t_0 … t_{kt−1}], rows
-// padded to a multiple of 4 floats (raycast/sample_table.h's layout for this backend's own
-// opacity correction).
-struct SliceTable {
-  static constexpr int strideFor(int width) { return (width + 3) / 4 * 4; }
-  int stride = 0;
-  std::vector<float> rows;
-  // alpha, transmission: the classification's entries corrected for the slice spacing.
-  SliceTable(const ClassifiedVolume& cv, const std::vector<float>& alpha,
-             const std::vector<float>& transmission)
-      : stride(strideFor(2 + cv.k + cv.t_channels)) {
-    const int k = cv.k, kt = cv.t_channels;
-    rows.assign(static_cast<std::size_t>(cv.entries) * stride, 0.f);
-    for (int e = 0; e < cv.entries; ++e) {
-      float* row = &rows[static_cast<std::size_t>(e) * stride];
-      row[0] = alpha[e];
-      row[1] = alpha[e] * cv.specular[e];
-      for (int c = 0; c < k; ++c)
-        row[2 + c] = alpha[e] * cv.reflectance[static_cast<std::size_t>(e) * k + c];
-      for (int c = 0; c < kt; ++c)
-        row[2 + k + c] = transmission[static_cast<std::size_t>(e) * kt + c];
-    }
-  }
-  const float* row(int e) const { return rows.data() + static_cast<std::size_t>(e) * stride; }
-};
-
-struct CompositeJob {
-  const ClassifiedVolume* volume;
-  const AxisEncoding* encoding;
-  const ShearWarpFactorization* view;
-  const SliceTable* table;
-  float threshold;
-  PhongSetup phong;  // light and half vectors are unit, world
-  IntermediateImage* image;
-  // Pre-classified mode only (preclassified_axis.h): the classified records, the view's shading
-  // table and the slice-spacing corrections x ↦ x^r of 1 − α and of t.
-  const PreclassifiedAxis* pre = nullptr;
-  const ShadingTable* shading = nullptr;
-  const PowerTable* opacity_power = nullptr;
-  const PowerTable* transmission_power = nullptr;
-  // A brick of a distributed render (core/brick_box.h): the view is the whole grid's; slices
-  // and in-slice positions are placed by the brick's origin (the index of its first stored
-  // voxel), and only its own samples are taken — slices [slice_begin, slice_end) of the
-  // encoding and in-slice positions within [lo, hi) (whole-grid voxel coordinates, open to ±∞
-  // at the grid's faces). A whole volume: origin 0, every slice, no bounds.
-  int origin[3] = {0, 0, 0};
-  double lo[3] = {-INFINITY, -INFINITY, -INFINITY}, hi[3] = {INFINITY, INFINITY, INFINITY};
-  int slice_begin = 0, slice_end = 0;
-};
-
-inline int nextLive(int* links, int u) {
+SVR_SHEARWARP_INLINE int nextLive(int* links, int u) {
   int root = u;
   while (links[root] != root) root = links[root];
   while (links[u] != root) {
@@ -91,8 +53,10 @@ inline int nextLive(int* links, int u) {
 // First intermediate pixel u ≥ 0 whose coordinate q(u) = u / scale + base reaches `target`
 // (strictly passes it when `strict`), computed with the same arithmetic the loop uses, so a
 // pixel is never lost or counted twice at a run boundary.
-inline int firstPixel(double target, double base, double inv_scale, int scale, bool strict) {
-  int u = static_cast<int>(std::ceil((target - base) * scale));
+SVR_SHEARWARP_INLINE int firstPixel(double target, double base, double inv_scale, int scale, bool strict) {
+  // A guess within one of the answer (truncation: std::ceil is a libm call on the baseline
+  // x86-64 target), then corrected.
+  int u = static_cast<int>((target - base) * scale);
   const auto reached = [&](int w) {
     const double q = w * inv_scale + base;
     return strict ? q > target : q >= target;
@@ -102,37 +66,56 @@ inline int firstPixel(double target, double base, double inv_scale, int scale, b
   return u;
 }
 
-// The sample's blended table row: the two bins around a scalar value, or the four corners'
-// labels weighted bilinearly.
-template <int kStride>
-[[gnu::always_inline]] inline void blendRow(const ClassifiedVolume& cv, const SliceTable& table,
-                                            const VoxelRecord* const c[4], const float w[4],
-                                            int width_, float* acc) {
-  const int width = kStride > 0 ? kStride : width_;
-  if (cv.labels) {
-    for (int j = 0; j < width; ++j) acc[j] = 0.f;
-    for (int n = 0; n < 4; ++n) {
-      const float* r = table.row(static_cast<int>(c[n]->value));
-      for (int j = 0; j < width; ++j) acc[j] += w[n] * r[j];
-    }
-    return;
+// Four floats as one vector (GCC's vector extension: SSE, or AVX where the kernel is compiled
+// for it); loads and stores through memcpy, which compiles to one unaligned move.
+typedef float Float4 __attribute__((vector_size(16)));
+SVR_SHEARWARP_INLINE Float4 load4(const float* p) {
+  Float4 v;
+  std::memcpy(&v, p, sizeof v);
+  return v;
+}
+SVR_SHEARWARP_INLINE void store4(float* p, Float4 v) { std::memcpy(p, &v, sizeof v); }
+
+// acc = r0 + frac (r1 − r0) over a table row (width: a multiple of 4, SliceTable's stride).
+SVR_SHEARWARP_INLINE void lerpRows(const float* r0, const float* r1, float frac,
+                                            int width, float* acc) {
+  for (int j = 0; j < width; j += 4) {
+    const Float4 a = load4(r0 + j);
+    store4(acc + j, a + frac * (load4(r1 + j) - a));
   }
-  const float value = w[0] * c[0]->value + w[1] * c[1]->value + w[2] * c[2]->value +
-                      w[3] * c[3]->value;
-  int e0, e1;
-  float frac;
-  binOf(cv, value, e0, e1, frac);
-  const float* r0 = table.row(e0);
-  const float* r1 = table.row(e1);
-  for (int j = 0; j < width; ++j) acc[j] = r0[j] + frac * (r1[j] - r0[j]);
 }
 
-// Every live intermediate pixel u of scanline v that slice `slice`'s cell runs cover: perRow(j0,
-// fj) is called once with the cell row and its fraction along j, and returns the per-sample
-// function sample(u, i0, fi) (i0: the cell along i, fi: the fraction), which composites pixel
-// u and says whether it became opaque (links then skips it from now on).
+// A label map's sample: the four corners' table rows (one per label) weighted bilinearly.
+SVR_SHEARWARP_INLINE void blendLabels(const SliceTable& table,
+                                               const VoxelRecord* const c[4], const float w[4],
+                                               int width, float* acc) {
+  for (int j = 0; j < width; j += 4) {
+    Float4 sum = w[0] * load4(table.row(static_cast<int>(c[0]->bin)) + j);
+    for (int n = 1; n < 4; ++n) sum += w[n] * load4(table.row(static_cast<int>(c[n]->bin)) + j);
+    store4(acc + j, sum);
+  }
+}
+
+// Up to kMax live pixels of one scanline in one slice, with their cells along i and fractions.
+// A slice's samples are independent of each other, so the kernels take them in batches, one
+// stage at a time over the whole batch (blend the records and shade, then composite): the
+// processor overlaps one pixel's loads and arithmetic with the next pixel's, instead of waiting
+// on each pixel's chain of loads, square root and power in turn. Each pixel's arithmetic is the
+// same as when it is taken alone.
+struct SampleBatch {
+  static constexpr int kMax = 32;
+  int count = 0;
+  int u[kMax], i0[kMax];
+  float fi[kMax];
+  bool opaque[kMax];  // set by the kernel: the pixel became opaque
+};
+
+// Every live intermediate pixel u of scanline v that slice `slice`'s cell runs cover, in
+// batches: perRow(j0, fj) is called once with the cell row and its fraction along j, and
+// returns the function composite(SampleBatch&), which composites the batch's pixels and flags
+// those that became opaque (links then skips them from the next slice on).
 template <class PerRow>
-[[gnu::always_inline]] inline void forEachSample(const CompositeJob& job, int v, int slice,
+SVR_SHEARWARP_INLINE void forEachSample(const CompositeJob& job, int v, int slice,
                                                  int* links, const PerRow& perRow) {
   const AxisEncoding& enc = *job.encoding;
   const ShearWarpFactorization& f = *job.view;
@@ -147,7 +130,7 @@ template <class PerRow>
   const double qj = qj_whole - job.origin[f.axis_j];
   if (!(qj >= 0.0 && qj <= n_j - 1)) return;
   const int j0 = std::min(static_cast<int>(qj), n_j - 2);
-  const auto sample = perRow(j0, static_cast<float>(qj - j0));
+  const auto composite = perRow(j0, static_cast<float>(qj - j0));
   const double base_i = f.offset_i + f.shear_i * whole_slice;
   const int oi = job.origin[f.axis_i];
   // The brick's own pixels along the scanline.
@@ -157,6 +140,13 @@ template <class PerRow>
   const int own_end = std::isfinite(job.hi[f.axis_i])
                           ? firstPixel(job.hi[f.axis_i], base_i, inv_scale, f.scale, false)
                           : width;
+  SampleBatch batch;
+  const auto flush = [&] {
+    composite(batch);
+    for (int p = 0; p < batch.count; ++p)
+      if (batch.opaque[p]) links[batch.u[p]] = batch.u[p] + 1;
+    batch.count = 0;
+  };
   for (const CellRun& run : enc.runs(slice, j0)) {
     const int u_begin = std::max(
         {firstPixel(run.begin + oi, base_i, inv_scale, f.scale, false), 0, own_begin});
@@ -167,15 +157,19 @@ template <class PerRow>
     for (int u = nextLive(links, u_begin); u < u_end; u = nextLive(links, u + 1)) {
       const double qi = (u * inv_scale + base_i) - oi;
       const int i0 = std::clamp(static_cast<int>(qi), run.begin, run.end - 1);
-      const float fi = std::clamp(static_cast<float>(qi - i0), 0.f, 1.f);
-      if (sample(u, i0, fi)) links[u] = u + 1;
+      const int p = batch.count++;
+      batch.u[p] = u;
+      batch.i0[p] = i0;
+      batch.fi[p] = std::clamp(static_cast<float>(qi - i0), 0.f, 1.f);
+      if (batch.count == SampleBatch::kMax) flush();
     }
   }
+  if (batch.count > 0) flush();
 }
 
 // One slice's samples on intermediate scanline v, post-classified.
 template <int K, bool kSpectralT>
-[[gnu::always_inline]] inline void compositeSlice(const CompositeJob& job, int v, int slice,
+SVR_SHEARWARP_INLINE void compositeSlice(const CompositeJob& job, int v, int slice,
                                                   int* links) {
   const ClassifiedVolume& cv = *job.volume;
   const AxisEncoding& enc = *job.encoding;
@@ -184,36 +178,65 @@ template <int K, bool kSpectralT>
   const int kt = kSpectralT ? k : 1;
   constexpr int kStride = K > 0 ? SliceTable::strideFor(2 + K + (kSpectralT ? K : 1)) : 0;
   constexpr int kWidthCap = SliceTable::strideFor(2 + kMaxChannels + kMaxChannels);
+  constexpr int kMax = SampleBatch::kMax;
   const float* white = cv.white.data();
   float* row = job.image->pixel(0, v);
   const int stride = job.image->channels();
-  forEachSample(job, v, slice, links, [&](int j0, float fj) {
+  forEachSample(job, v, slice, links, [&](int j0, float fj) __attribute__((always_inline)) {
     // Voxel i of rows j0 and j0 + 1, for the i the cell runs touch.
     const VoxelRecord* rec0 = enc.rowRecords(slice, j0);
     const VoxelRecord* rec1 = enc.rowRecords(slice, j0 + 1);
-    return [&, rec0, rec1, fj](int u, int i0, float fi) {
-      const VoxelRecord* const c[4] = {rec0 + i0, rec0 + i0 + 1, rec1 + i0, rec1 + i0 + 1};
-      const float w[4] = {(1 - fi) * (1 - fj), fi * (1 - fj), (1 - fi) * fj, fi * fj};
-      alignas(16) float acc[K > 0 ? kStride : kWidthCap];
-      blendRow<kStride>(cv, table, c, w, table.stride, acc);
-      float* S = row + static_cast<std::size_t>(u) * stride;
-      float* T = S + k;
-      if (acc[0] > 0.f) {  // α
-        float g[3];
-        for (int a = 0; a < 3; ++a)
-          g[a] = w[0] * c[0]->gradient[a] + w[1] * c[1]->gradient[a] +
-                 w[2] * c[2]->gradient[a] + w[3] * c[3]->gradient[a];
-        const auto [shade, highlight] = phong(job.phong, g);
-        const float hs = highlight * acc[1];
-        for (int ch = 0; ch < k; ++ch)
-          S[ch] += T[kSpectralT ? ch : 0] * (acc[2 + ch] * shade + white[ch] * hs);
+    return [&, rec0, rec1, fj](SampleBatch& b) __attribute__((always_inline)) {
+      const auto corners = [&](int p, const VoxelRecord* c[4], float w[4]) {
+        const int i0 = b.i0[p];
+        const float fi = b.fi[p];
+        c[0] = rec0 + i0, c[1] = rec0 + i0 + 1, c[2] = rec1 + i0, c[3] = rec1 + i0 + 1;
+        w[0] = (1 - fi) * (1 - fj), w[1] = fi * (1 - fj), w[2] = (1 - fi) * fj, w[3] = fi * fj;
+      };
+      // Stage 1: the records (bin coordinate and gradient, one vector each) interpolated, and
+      // the gradient's Phong terms, for every pixel of the batch.
+      float bins[kMax], shade[kMax], highlight[kMax];
+      for (int p = 0; p < b.count; ++p) {
+        const VoxelRecord* c[4];
+        float w[4];
+        corners(p, c, w);
+        static_assert(sizeof(VoxelRecord) == sizeof(Float4));
+        const Float4 r = w[0] * load4(&c[0]->bin) + w[1] * load4(&c[1]->bin) +
+                         w[2] * load4(&c[2]->bin) + w[3] * load4(&c[3]->bin);
+        const float g[3] = {r[1], r[2], r[3]};
+        const PhongTerms terms = phong(job.phong, g);
+        bins[p] = r[0], shade[p] = terms.shade, highlight[p] = terms.highlight;
       }
-      float tmax = 0.f;
-      for (int ch = 0; ch < kt; ++ch) {
-        T[ch] *= acc[2 + k + ch];
-        tmax = std::max(tmax, T[ch]);
+      // Stage 2: classify (the two bins around the interpolated bin coordinate, or the
+      // corners' labels) and composite.
+      for (int p = 0; p < b.count; ++p) {
+        alignas(16) float acc[K > 0 ? kStride : kWidthCap];
+        const int width = K > 0 ? kStride : table.stride;
+        if (cv.labels) {
+          const VoxelRecord* c[4];
+          float w[4];
+          corners(p, c, w);
+          blendLabels(table, c, w, width, acc);
+        } else {
+          int e0, e1;
+          float frac;
+          entriesOfBin(cv, bins[p], e0, e1, frac);
+          lerpRows(table.row(e0), table.row(e1), frac, width, acc);
+        }
+        float* S = row + static_cast<std::size_t>(b.u[p]) * stride;
+        float* T = S + k;
+        if (acc[0] > 0.f) {  // α
+          const float hs = highlight[p] * acc[1];
+          for (int ch = 0; ch < k; ++ch)
+            S[ch] += T[kSpectralT ? ch : 0] * (acc[2 + ch] * shade[p] + white[ch] * hs);
+        }
+        float tmax = 0.f;
+        for (int ch = 0; ch < kt; ++ch) {
+          T[ch] *= acc[2 + k + ch];
+          tmax = std::max(tmax, T[ch]);
+        }
+        b.opaque[p] = tmax < job.threshold;
       }
-      return tmax < job.threshold;
     };
   });
 }
@@ -222,7 +245,7 @@ template <int K, bool kSpectralT>
 // blended bilinearly, each shaded from the view's table by its normal index; the interpolated
 // α and t corrected for the slice spacing.
 template <int K, bool kSpectralT>
-[[gnu::always_inline]] inline void compositeSlicePre(const CompositeJob& job, int v, int slice,
+SVR_SHEARWARP_INLINE void compositeSlicePre(const CompositeJob& job, int v, int slice,
                                                      int* links) {
   const ClassifiedVolume& cv = *job.volume;
   const PreclassifiedAxis& pre = *job.pre;
@@ -233,40 +256,44 @@ template <int K, bool kSpectralT>
   const int rs = pre.stride();
   float* row = job.image->pixel(0, v);
   const int stride = job.image->channels();
-  forEachSample(job, v, slice, links, [&](int j0, float fj) {
+  forEachSample(job, v, slice, links, [&](int j0, float fj) __attribute__((always_inline)) {
     const float* rec0 = pre.rowRecords(slice, j0);
     const float* rec1 = pre.rowRecords(slice, j0 + 1);
     const std::uint16_t* nrm0 = pre.rowNormals(slice, j0);
     const std::uint16_t* nrm1 = pre.rowNormals(slice, j0 + 1);
-    return [&, rec0, rec1, nrm0, nrm1, fj](int u, int i0, float fi) {
-      const float* c[4] = {rec0 + i0 * rs, rec0 + (i0 + 1) * rs, rec1 + i0 * rs,
-                           rec1 + (i0 + 1) * rs};
-      const std::uint16_t nidx[4] = {nrm0[i0], nrm0[i0 + 1], nrm1[i0], nrm1[i0 + 1]};
-      const float w[4] = {(1 - fi) * (1 - fj), fi * (1 - fj), (1 - fi) * fj, fi * fj};
-      float* S = row + static_cast<std::size_t>(u) * stride;
-      float* T = S + k;
-      const float a = w[0] * c[0][0] + w[1] * c[1][0] + w[2] * c[2][0] + w[3] * c[3][0];
-      if (a > 0.f) {
-        // S += T ⊙ (α'/α) Σ w (α·ρ · shade + α·s · highlight · white).
-        const float scale = (1.f - (*job.opacity_power)(1.f - a)) / a;
-        float ws[4], wh = 0.f;
-        for (int n = 0; n < 4; ++n) {
-          ws[n] = scale * w[n] * terms[2 * nidx[n]];
-          wh += scale * w[n] * c[n][1] * terms[2 * nidx[n] + 1];
+    return [&, rec0, rec1, nrm0, nrm1, fj](SampleBatch& b) __attribute__((always_inline)) {
+      for (int p = 0; p < b.count; ++p) {
+        const int i0 = b.i0[p];
+        const float fi = b.fi[p];
+        const float* c[4] = {rec0 + i0 * rs, rec0 + (i0 + 1) * rs, rec1 + i0 * rs,
+                             rec1 + (i0 + 1) * rs};
+        const std::uint16_t nidx[4] = {nrm0[i0], nrm0[i0 + 1], nrm1[i0], nrm1[i0 + 1]};
+        const float w[4] = {(1 - fi) * (1 - fj), fi * (1 - fj), (1 - fi) * fj, fi * fj};
+        float* S = row + static_cast<std::size_t>(b.u[p]) * stride;
+        float* T = S + k;
+        const float a = w[0] * c[0][0] + w[1] * c[1][0] + w[2] * c[2][0] + w[3] * c[3][0];
+        if (a > 0.f) {
+          // S += T ⊙ (α'/α) Σ w (α·ρ · shade + α·s · highlight · white).
+          const float scale = (1.f - (*job.opacity_power)(1.f - a)) / a;
+          float ws[4], wh = 0.f;
+          for (int n = 0; n < 4; ++n) {
+            ws[n] = scale * w[n] * terms[2 * nidx[n]];
+            wh += scale * w[n] * c[n][1] * terms[2 * nidx[n] + 1];
+          }
+          for (int ch = 0; ch < k; ++ch)
+            S[ch] += T[kSpectralT ? ch : 0] *
+                     (ws[0] * c[0][2 + ch] + ws[1] * c[1][2 + ch] + ws[2] * c[2][2 + ch] +
+                      ws[3] * c[3][2 + ch] + wh * white[ch]);
         }
-        for (int ch = 0; ch < k; ++ch)
-          S[ch] += T[kSpectralT ? ch : 0] *
-                   (ws[0] * c[0][2 + ch] + ws[1] * c[1][2 + ch] + ws[2] * c[2][2 + ch] +
-                    ws[3] * c[3][2 + ch] + wh * white[ch]);
+        float tmax = 0.f;
+        for (int ch = 0; ch < kt; ++ch) {
+          const int o = 2 + k + ch;
+          T[ch] *= (*job.transmission_power)(w[0] * c[0][o] + w[1] * c[1][o] +
+                                             w[2] * c[2][o] + w[3] * c[3][o]);
+          tmax = std::max(tmax, T[ch]);
+        }
+        b.opaque[p] = tmax < job.threshold;
       }
-      float tmax = 0.f;
-      for (int ch = 0; ch < kt; ++ch) {
-        const int o = 2 + k + ch;
-        T[ch] *= (*job.transmission_power)(w[0] * c[0][o] + w[1] * c[1][o] + w[2] * c[2][o] +
-                                           w[3] * c[3][o]);
-        tmax = std::max(tmax, T[ch]);
-      }
-      return tmax < job.threshold;
     };
   });
 }
@@ -278,7 +305,7 @@ template <int K, bool kSpectralT>
 // was the first load of a voxel record. A band's scanlines only ever receive their own rays,
 // so bands composite independently: no barrier per slice.
 template <int K, bool kSpectralT, bool kPre>
-void compositeBand(const CompositeJob& job, int v0, int v1, std::vector<int>& links) {
+SVR_SHEARWARP_TARGET void compositeBand(const CompositeJob& job, int v0, int v1, std::vector<int>& links) {
   const int width = job.image->width;
   const int n_k = job.slice_end - job.slice_begin;
   const int lines = v1 - v0;
@@ -301,4 +328,21 @@ void compositeBand(const CompositeJob& job, int v0, int v1, std::vector<int>& li
   }
 }
 
-}  // namespace svr::shearwarp
+template <bool kSpectralT, bool kPre>
+BandFn pickFor(int k, bool dynamic_width) {
+  return pickWidth(k, dynamic_width, []<int N>() -> BandFn {
+    return &compositeBand<N, kSpectralT, kPre>;
+  });
+}
+
+inline BandFn pickKernel(const KernelKey& key) {
+  if (key.spectral_t)
+    return key.pre ? pickFor<true, true>(key.k, key.dynamic_width)
+                   : pickFor<true, false>(key.k, key.dynamic_width);
+  return key.pre ? pickFor<false, true>(key.k, key.dynamic_width)
+                 : pickFor<false, false>(key.k, key.dynamic_width);
+}
+
+#undef SVR_SHEARWARP_INLINE
+
+}  // namespace svr::shearwarp::SVR_SHEARWARP_ISA

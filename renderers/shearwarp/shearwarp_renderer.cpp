@@ -11,27 +11,21 @@
 
 #include "renderers/shearwarp/intermediate_warp.h"
 #include "renderers/shearwarp/shear_warp_factorization.h"
-#include "renderers/shearwarp/shearwarp_kernel.h"
+#include "renderers/shearwarp/shearwarp_kernels.h"
 #include "spectral/error.h"
-#include "renderers/core/channel_widths.h"
 #include "renderers/registry.h"
 #include "renderers/shearwarp/rle_volume.h"
 
 namespace svr {
 namespace {
 
-using BandFn = void (*)(const shearwarp::CompositeJob&, int, int, std::vector<int>&);
-
-template <bool kSpectralT, bool kPre>
-BandFn pickFor(int k) {
-  return pickWidth(k, false, []<int N>() -> BandFn {
-    return &shearwarp::compositeBand<N, kSpectralT, kPre>;
-  });
-}
-
-BandFn pickKernel(int k, bool spectral_t, bool pre) {
-  if (spectral_t) return pre ? pickFor<true, true>(k) : pickFor<true, false>(k);
-  return pre ? pickFor<false, true>(k) : pickFor<false, false>(k);
+// The kernel for this CPU, chosen once per render: AVX2 + FMA where the CPU has them and the
+// portable path is not forced (as the raycaster chooses); the portable compilation otherwise.
+shearwarp::BandFn pickKernel(const shearwarp::KernelKey& key, const KernelForce& force) {
+  const bool avx2 = shearwarp::avx2::compiled() && availableKernelIsas().back() == KernelIsa::kAvx2;
+  if (avx2 && force.isa.value_or(KernelIsa::kAvx2) == KernelIsa::kAvx2)
+    return shearwarp::avx2::pick(key);
+  return shearwarp::portable::pick(key);
 }
 
 // The range of the transmission coefficients (factor models may leave [0, 1]) and 1.
@@ -191,7 +185,9 @@ LightIndependentImage ShearWarpRenderer::renderImpl(const RenderRequest& req,
     job.opacity_power = &*opacity_power;
     job.transmission_power = &*transmission_power;
   }
-  const BandFn fn = pickKernel(cv.k, cv.t_channels > 1, pre);
+  const shearwarp::BandFn fn = pickKernel(
+      {.k = cv.k, .spectral_t = cv.t_channels > 1, .pre = pre, .dynamic_width = force_.dynamic_width},
+      force_);
   // Bands of kBand scanlines (compositeBand); dynamic over bands, as opaque regions end some
   // bands early.
   constexpr int kBand = 16;
@@ -219,7 +215,7 @@ LightIndependentImage ShearWarpRenderer::renderImpl(const RenderRequest& req,
   return image;
 }
 
-ShearWarpRenderer::ShearWarpRenderer() = default;
+ShearWarpRenderer::ShearWarpRenderer(KernelForce force) : force_(force) {}
 ShearWarpRenderer::~ShearWarpRenderer() = default;
 
 namespace backends {

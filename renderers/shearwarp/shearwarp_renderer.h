@@ -21,6 +21,7 @@
 #include <vector>
 
 #include "renderers/core/renderer.h"
+#include "spectral/relight_kernel.h"
 
 namespace svr {
 namespace shearwarp {
@@ -43,13 +44,15 @@ class ShearWarpRenderer final : public Renderer {
                                    ProgressCounter& progress) const override;
 
  public:
-  ShearWarpRenderer();
+  // force: the kernel's instruction set and dynamic-k path (tests compare them).
+  explicit ShearWarpRenderer(KernelForce force = {});
   ~ShearWarpRenderer() override;
 
  private:
   // Intermediate images of finished frames, reused by the next ones (allocating and zeroing a
   // fresh one cost about 16 ns per output pixel, some 10 of 37 ms at 800²). One per render
   // running at a time on this instance.
+  KernelForce force_;
   mutable std::mutex pool_mutex_;
   mutable std::vector<std::unique_ptr<shearwarp::IntermediateImage>> pool_;
 };

@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "renderers/core/classification.h"
+#include "renderers/core/classified_sample.h"
 #include "renderers/core/renderer.h"
 #include "renderers/core/splat_footprint.h"
 #include "renderers/core/splat_voxels.h"
@@ -53,8 +54,10 @@ class SplatList {
   // The same for a reconstructed value `bin` (the classification's bin coordinate, as
   // entry + frac) with the shade and highlight reconstructed beside it.
   void classifyBin(float bin, float shade, float highlight, SplatCoefficients& out) const {
-    const int entry = std::clamp(static_cast<int>(bin), 0, std::max(cv_.entries - 2, 0));
-    classify(entry, std::clamp(bin - static_cast<float>(entry), 0.f, 1.f), shade, highlight, out);
+    int e0, e1;
+    float frac;
+    entriesOfBin(cv_, bin, e0, e1, frac);
+    classify(e0, frac, shade, highlight, out);
   }
 
  private:

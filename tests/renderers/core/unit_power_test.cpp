@@ -1,5 +1,7 @@
 #include "renderers/core/unit_power.h"
 
+#include "renderers/core/classified_sample.h"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -29,6 +31,40 @@ TEST(UnitPower, EdgesAreExact) {
   EXPECT_NEAR(unitPower(1.f, 24.f), 1.f, 1e-6f);
   EXPECT_NEAR(unitPower(0.5f, 2.f), 0.25f, 1e-6f);
   EXPECT_EQ(unitPower(1e-30f, 100.f), 0.f);  // far below float's range
+}
+
+// Square and multiply for whole shininess: within float rounding of one multiplication per bit
+// (about n · 2⁻²⁴ relative), far inside unitPower's bound.
+TEST(WholePower, MatchesPowForWholeExponents) {
+  for (int n : {1, 2, 3, 7, 24, 64, 100, 1000}) {
+    double worst = 0.0;
+    for (int i = 1; i <= 100000; ++i) {
+      const float x = static_cast<float>(i) / 100000.f;
+      const double exact = std::pow(static_cast<double>(x), static_cast<double>(n));
+      if (exact < 1e-30) continue;
+      worst = std::max(worst, std::abs(wholePower(x, n) - exact) / exact);
+    }
+    EXPECT_LT(worst, 1.2e-7 * n + 1e-7) << "n = " << n;
+  }
+  EXPECT_EQ(wholePower(0.5f, 3), 0.125f);
+  EXPECT_EQ(wholePower(1.f, 1000), 1.f);
+}
+
+// Phong takes the whole-number path for whole shininess only, and both paths agree.
+TEST(WholePower, PhongUsesItForWholeShininessOnly) {
+  const glm::dvec3 light(0, 0, 1), half(0, 0.6, 0.8);
+  Shading shading;
+  shading.ambient = 0.3, shading.diffuse = 0.7, shading.specular = 0.4;
+  for (double s : {24.0, 24.5, 0.5, 2000.0}) {
+    shading.shininess = s;
+    const PhongSetup p(shading, light, half);
+    EXPECT_EQ(p.whole_shininess, s == 24.0 ? 24 : 0) << s;
+    const float g[3] = {0.f, -0.6f, -0.8f};  // normal along the half vector: cos_h = 1
+    const float g2[3] = {0.f, -0.3f, -0.9f};
+    EXPECT_NEAR(phong(p, g).highlight, 0.4f, 1e-6f) << s;
+    const double cos_h = (0.6 * 0.3 + 0.8 * 0.9) / std::sqrt(0.09 + 0.81);
+    EXPECT_NEAR(phong(p, g2).highlight, 0.4 * std::pow(cos_h, s), 1e-6 * s) << s;
+  }
 }
 
 }  // namespace

@@ -6,6 +6,7 @@
 #include <cstdio>
 
 #include "renderers/core/classification.h"
+#include "renderers/core/classified_sample.h"
 #include "renderers/core/procedural_volume.h"
 #include "renderers/scene_model.h"
 #include "renderers/raycast/raycast_renderer.h"
@@ -13,6 +14,7 @@
 #include "renderers/shearwarp/rle_volume.h"
 #include "renderers/shearwarp/shear_warp_factorization.h"
 #include "spectral/error.h"
+#include "spectral/linear_model.h"
 #include "spectral/image_difference.h"
 #include "tests/renderers/test_scenes.h"
 
@@ -145,7 +147,7 @@ void expectRoundTrip(const ClassifiedVolume& cv) {
             const auto& rec = enc.voxel(k, row, col);
             const std::size_t index =
                 (static_cast<std::size_t>(q[2]) * cv.dims[1] + q[1]) * cv.dims[0] + q[0];
-            ASSERT_EQ(rec.value, cv.labels ? float(cv.label[index]) : cv.values[index]);
+            ASSERT_EQ(rec.bin, cv.labels ? float(cv.label[index]) : binCoordinate(cv, cv.values[index]));
             // The gradient is the raycaster's central difference of the shading field.
             for (int a = 0; a < 3; ++a) {
               int lo[3] = {q[0], q[1], q[2]}, hi[3] = {q[0], q[1], q[2]};
@@ -236,6 +238,53 @@ TEST(ShearWarp, PreClassifiedEngineStaysNearTheRaycaster) {
   ASSERT_GT(d.covered, 1000u);
   EXPECT_TRUE(d.stats.finite);
   EXPECT_LT(d.stats.mean, 3.0);
+}
+
+// The kernels are compiled per channel count and per instruction set (portable and AVX2 + FMA,
+// shearwarp_kernel.h): a fixed width equals the dynamic-k path bit for bit on each, and the two
+// instruction sets agree to float rounding. A scalar CT (the engine, at a generic view) and the
+// phantom (a label map with a spectral absorber), post- and pre-classified.
+TEST(ShearWarp, KernelsAgreeAcrossWidthsAndInstructionSets) {
+  Scene engine =
+      loadScene(test::rendererDataDir() + "/scenes/engine.json", test::rendererLibrary());
+  engine.camera = Camera::orbit(30.0, 20.0, 400.0, 0.0, engine.camera.ortho_height);
+  engine.width = engine.height = 64;
+  const bool avx2 = availableKernelIsas().back() == KernelIsa::kAvx2;
+  for (const Scene& scene : {engine, test::phantomScene()})
+    for (int k : {3, 6, 8}) {
+      const auto model = makeSpectralModel(test::rendererObserver(), k);
+      const ClassifiedVolume cv = classifyScene(scene, *model);
+      for (const char* mode : {"post", "pre"}) {
+        const nlohmann::json options = {{"shearwarp", {{"classification", mode}}}};
+        const auto portable =
+            test::render(ShearWarpRenderer({.isa = KernelIsa::kPortable}), scene, cv, options);
+        const auto portable_dynamic = test::render(
+            ShearWarpRenderer({.dynamic_width = true, .isa = KernelIsa::kPortable}), scene, cv,
+            options);
+        ASSERT_EQ(portable.planes(), portable_dynamic.planes());
+        double peak = 0.0;
+        for (int p = 0; p < portable.planes(); ++p)
+          for (std::size_t i = 0; i < portable.pixels(); ++i) {
+            ASSERT_EQ(portable.planeFloat(p)[i], portable_dynamic.planeFloat(p)[i])
+                << k << " " << mode << " plane " << p;
+            peak = std::max(peak, double(portable.planeFloat(p)[i]));
+          }
+        ASSERT_GT(peak, 0.01);  // something was drawn
+        if (!avx2) continue;
+        const auto fast =
+            test::render(ShearWarpRenderer({.isa = KernelIsa::kAvx2}), scene, cv, options);
+        const auto fast_dynamic = test::render(
+            ShearWarpRenderer({.dynamic_width = true, .isa = KernelIsa::kAvx2}), scene, cv,
+            options);
+        for (int p = 0; p < fast.planes(); ++p)
+          for (std::size_t i = 0; i < fast.pixels(); ++i) {
+            ASSERT_EQ(fast.planeFloat(p)[i], fast_dynamic.planeFloat(p)[i])
+                << k << " " << mode << " plane " << p;
+            ASSERT_NEAR(fast.planeFloat(p)[i], portable.planeFloat(p)[i], 1e-5)
+                << k << " " << mode << " plane " << p;
+          }
+      }
+    }
 }
 
 // On the principal axes and the 45° diagonals (where the principal axis switches, and the
