@@ -19,7 +19,7 @@
 namespace svr {
 namespace {
 
-// The kernel for this CPU, chosen once per render: AVX2 + FMA where the CPU has them and the
+// The kernel for this CPU, chosen once per render: AVX2 where the CPU has it (and FMA) and the
 // portable path is not forced (as the raycaster chooses); the portable compilation otherwise.
 shearwarp::BandFn pickKernel(const shearwarp::KernelKey& key, const KernelForce& force) {
   const bool avx2 = shearwarp::avx2::compiled() && availableKernelIsas().back() == KernelIsa::kAvx2;
