@@ -188,7 +188,9 @@ BrickedRender renderBothWays(const Scene& scene, const ColourModel& model,
       req.front = &*exchange;
     }
     images[i] = renderer->render(req);
-    if (exchange) EXPECT_TRUE(exchange->complete()) << "every block finished, then done";
+    if (exchange) {
+      EXPECT_TRUE(exchange->complete()) << "every block finished, then done";
+    }
     const int k = in_front.channels();
     for (int c = 0; c < in_front.transmittanceChannels(); ++c) {
       const auto own = images[i].planeFloat(k + c);
