@@ -9,6 +9,7 @@
 #include <glm/vec3.hpp>
 
 #include "renderers/core/classification.h"
+#include "renderers/core/float4.h"
 #include "renderers/core/renderer.h"
 #include "renderers/core/unit_power.h"
 
@@ -112,6 +113,15 @@ struct PhongSetup {
   return result;
 }
 
+// wholePower over four lanes: the same multiplications in the same order, so each lane equals
+// wholePower's result.
+[[gnu::always_inline]] inline Float4 wholePower4(Float4 x, int n) {
+  Float4 result = splat4(1.f);
+  for (Float4 square = x; n > 0; n >>= 1, square *= square)
+    if (n & 1) result *= square;
+  return result;
+}
+
 // Normals are −∇f/|∇f|; where the gradient vanishes (inside a uniform region) there is no
 // surface, and the sample is lit fully and without highlight.
 [[gnu::always_inline]] inline PhongTerms phong(const PhongSetup& p, const float g[3]) {
@@ -126,6 +136,30 @@ struct PhongSetup {
     highlight = p.specular * (p.whole_shininess > 0 ? wholePower(cos_h, p.whole_shininess)
                                                     : unitPower(cos_h, p.shininess));
   return {p.ambient + p.diffuse * std::abs(nl), highlight};
+}
+
+// phong for four gradients at once, one lane each (gx, gy, gz: their components): every lane
+// takes phong's operations in phong's order, so it equals phong's result bit for bit (the test
+// asserts it); lanes without a surface are selected afterwards instead of returned early.
+[[gnu::always_inline]] inline void phong4(const PhongSetup& p, Float4 gx, Float4 gy, Float4 gz,
+                                          Float4& shade, Float4& highlight) {
+  const Float4 len = sqrt4(gx * gx + gy * gy + gz * gz);
+  const Float4 inv_len = 1.f / len;
+  const Float4 nl = (gx * p.light[0] + gy * p.light[1] + gz * p.light[2]) * inv_len;
+  const Float4 nh = (gx * p.half[0] + gy * p.half[1] + gz * p.half[2]) * inv_len;
+  const Float4 abs_nh = abs4(nh);
+  const Float4 cos_h = 1.f < abs_nh ? splat4(1.f) : abs_nh;  // std::min(|nh|, 1)
+  const auto lit = len > 1e-6f;
+  const auto shiny = cos_h > p.highlight_floor;
+  Float4 power;
+  if (p.whole_shininess > 0) {
+    power = wholePower4(cos_h, p.whole_shininess);
+  } else {
+    for (int lane = 0; lane < 4; ++lane)
+      power[lane] = shiny[lane] ? unitPower(cos_h[lane], p.shininess) : 0.f;
+  }
+  shade = lit ? p.ambient + p.diffuse * abs4(nl) : splat4(p.ambient + p.diffuse);
+  highlight = (lit & shiny) ? p.specular * power : splat4(0.f);
 }
 
 }  // namespace svr

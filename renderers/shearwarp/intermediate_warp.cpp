@@ -3,13 +3,15 @@
 #include <algorithm>
 #include <cmath>
 
+#include "renderers/core/float4.h"
+
 namespace svr::shearwarp {
 
 IntermediateImage::IntermediateImage(int w, int h, int s, int t) { reset(w, h, s, t); }
 
 void IntermediateImage::reset(int w, int h, int s, int t) {
   width = w, height = h, s_channels = s, t_channels = t;
-  data.resize(static_cast<std::size_t>(w) * h * (s + t));
+  data.resize(static_cast<std::size_t>(w) * h * (s + t) + kSlack);
   float* d = data.data();
   for (std::size_t p = 0; p < static_cast<std::size_t>(w) * h; ++p, d += s + t) {
     std::fill_n(d, s, 0.f);
@@ -71,14 +73,25 @@ void warpToFinal(const IntermediateImage& im, const ShearWarpFactorization& f,
     const double u_row = f.warp_u[0] + f.warp_u[2] * py, v_row = f.warp_v[0] + f.warp_v[2] * py;
     const std::size_t row_index = static_cast<std::size_t>(y) * width;
     // Inside: all four taps in the image and both coordinates ≥ 0, so truncation is the floor
-    // (std::floor is a libm call on the baseline x86-64 target).
+    // (std::floor is a libm call on the baseline x86-64 target). The taps' channels blend four
+    // at a time (the same arithmetic per channel as blend's), the lanes past the last channel
+    // read the next pixel or the image's slack and are not stored.
     for (int x = inner0; x < inner1; ++x) {
       const double px = x + 0.5;
       const double u = u_row + f.warp_u[1] * px, v = v_row + f.warp_v[1] * px;
       const int iu = static_cast<int>(u), iv = static_cast<int>(v);
+      const float fu = static_cast<float>(u - iu), fv = static_cast<float>(v - iv);
+      const float w00 = (1 - fu) * (1 - fv), w10 = fu * (1 - fv), w01 = (1 - fu) * fv,
+                  w11 = fu * fv;
       const float* p00 = im.pixel(iu, iv);
-      blend(row_index + x, p00, p00 + channels, p00 + row_stride, p00 + row_stride + channels,
-            static_cast<float>(u - iu), static_cast<float>(v - iv));
+      const float* p01 = p00 + row_stride;
+      const std::size_t at = row_index + x;
+      for (int c = 0; c < channels; c += 4) {
+        const Float4 sum = w00 * load4(p00 + c) + w10 * load4(p00 + channels + c) +
+                           w01 * load4(p01 + c) + w11 * load4(p01 + channels + c);
+        for (int lane = 0; lane < std::min(4, channels - c); ++lane)
+          planes[(c + lane) * pixels + at] = sum[lane];
+      }
     }
     // The border pixels, with every tap checked.
     const auto border = [&](int x) {

@@ -22,7 +22,9 @@ struct IntermediateImage {
   const float* pixel(int u, int v) const {
     return data.data() + (static_cast<std::size_t>(v) * width + u) * channels();
   }
-  std::vector<float> data;  // starts empty: S = 0, T = 1
+  // Floats past the last pixel, so that the warp may read any pixel's channels four at a time.
+  static constexpr int kSlack = 3;
+  std::vector<float> data;  // starts empty: S = 0, T = 1 (then kSlack floats of slack)
 };
 
 // Every final pixel takes the bilinear interpolation of the intermediate pixels around its

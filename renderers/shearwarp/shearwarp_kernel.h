@@ -30,6 +30,7 @@
 
 #include "renderers/core/channel_widths.h"
 #include "renderers/core/classified_sample.h"
+#include "renderers/core/float4.h"
 #include "renderers/shearwarp/shearwarp_kernels.h"
 
 namespace svr::shearwarp::SVR_SHEARWARP_ISA {
@@ -65,16 +66,6 @@ SVR_SHEARWARP_INLINE int firstPixel(double target, double base, double inv_scale
   while (!reached(u)) ++u;
   return u;
 }
-
-// Four floats as one vector (GCC's vector extension: SSE, or AVX where the kernel is compiled
-// for it); loads and stores through memcpy, which compiles to one unaligned move.
-typedef float Float4 __attribute__((vector_size(16)));
-SVR_SHEARWARP_INLINE Float4 load4(const float* p) {
-  Float4 v;
-  std::memcpy(&v, p, sizeof v);
-  return v;
-}
-SVR_SHEARWARP_INLINE void store4(float* p, Float4 v) { std::memcpy(p, &v, sizeof v); }
 
 // acc = r0 + frac (r1 − r0) over a table row (width: a multiple of 4, SliceTable's stride).
 SVR_SHEARWARP_INLINE void lerpRows(const float* r0, const float* r1, float frac,
@@ -194,8 +185,10 @@ SVR_SHEARWARP_INLINE void compositeSlice(const CompositeJob& job, int v, int sli
         w[0] = (1 - fi) * (1 - fj), w[1] = fi * (1 - fj), w[2] = (1 - fi) * fj, w[3] = fi * fj;
       };
       // Stage 1: the records (bin coordinate and gradient, one vector each) interpolated, and
-      // the gradient's Phong terms, for every pixel of the batch.
-      float bins[kMax], shade[kMax], highlight[kMax];
+      // the gradients' Phong terms four pixels at a time, for every pixel of the batch (lanes
+      // past the batch's end shade a zero gradient and are not used).
+      alignas(16) float bins[kMax], gx[kMax], gy[kMax], gz[kMax], shade[kMax], highlight[kMax];
+      const int padded = (b.count + 3) / 4 * 4;
       for (int p = 0; p < b.count; ++p) {
         const VoxelRecord* c[4];
         float w[4];
@@ -203,9 +196,14 @@ SVR_SHEARWARP_INLINE void compositeSlice(const CompositeJob& job, int v, int sli
         static_assert(sizeof(VoxelRecord) == sizeof(Float4));
         const Float4 r = w[0] * load4(&c[0]->bin) + w[1] * load4(&c[1]->bin) +
                          w[2] * load4(&c[2]->bin) + w[3] * load4(&c[3]->bin);
-        const float g[3] = {r[1], r[2], r[3]};
-        const PhongTerms terms = phong(job.phong, g);
-        bins[p] = r[0], shade[p] = terms.shade, highlight[p] = terms.highlight;
+        bins[p] = r[0], gx[p] = r[1], gy[p] = r[2], gz[p] = r[3];
+      }
+      for (int p = b.count; p < padded; ++p) gx[p] = gy[p] = gz[p] = 0.f;
+      for (int p = 0; p < padded; p += 4) {
+        Float4 lit, shiny;
+        phong4(job.phong, load4(gx + p), load4(gy + p), load4(gz + p), lit, shiny);
+        store4(shade + p, lit);
+        store4(highlight + p, shiny);
       }
       // Stage 2: classify (the two bins around the interpolated bin coordinate, or the
       // corners' labels) and composite.

@@ -5,6 +5,8 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdint>
+#include <glm/geometric.hpp>
 
 namespace svr {
 namespace {
@@ -64,6 +66,40 @@ TEST(WholePower, PhongUsesItForWholeShininessOnly) {
     EXPECT_NEAR(phong(p, g).highlight, 0.4f, 1e-6f) << s;
     const double cos_h = (0.6 * 0.3 + 0.8 * 0.9) / std::sqrt(0.09 + 0.81);
     EXPECT_NEAR(phong(p, g2).highlight, 0.4 * std::pow(cos_h, s), 1e-6 * s) << s;
+  }
+}
+
+// phong4 takes phong's operations in phong's order per lane: bit-equal results, for whole and
+// fractional shininess, zero and tiny gradients (no surface), and gradients on both sides.
+TEST(Phong4, EachLaneEqualsPhong) {
+  const glm::dvec3 light = glm::normalize(glm::dvec3(0.3, -0.5, 0.8));
+  const glm::dvec3 half = glm::normalize(light + glm::dvec3(0, 0, 1));
+  Shading shading;
+  shading.ambient = 0.3, shading.diffuse = 0.7, shading.specular = 0.4;
+  std::uint32_t seed = 12345;
+  const auto next = [&] {
+    seed = seed * 1664525u + 1013904223u;
+    return static_cast<float>(seed >> 8) / 16777216.f * 2.f - 1.f;
+  };
+  for (double s : {24.0, 7.5}) {
+    shading.shininess = s;
+    const PhongSetup p(shading, light, half);
+    for (int round = 0; round < 1000; ++round) {
+      float g[3][4];
+      for (int lane = 0; lane < 4; ++lane)
+        for (int a = 0; a < 3; ++a) g[a][lane] = next() * (lane == 3 ? 1e-7f : 1.f);
+      if (round == 0) g[0][1] = g[1][1] = g[2][1] = 0.f;
+      if (round == 1)  // along the half vector: the brightest highlight
+        for (int a = 0; a < 3; ++a) g[a][2] = -static_cast<float>(half[a]);
+      Float4 shade, highlight;
+      phong4(p, load4(g[0]), load4(g[1]), load4(g[2]), shade, highlight);
+      for (int lane = 0; lane < 4; ++lane) {
+        const float one[3] = {g[0][lane], g[1][lane], g[2][lane]};
+        const PhongTerms expected = phong(p, one);
+        ASSERT_EQ(shade[lane], expected.shade) << s << " " << round << " " << lane;
+        ASSERT_EQ(highlight[lane], expected.highlight) << s << " " << round << " " << lane;
+      }
+    }
   }
 }
 
