@@ -54,7 +54,8 @@ SVR_SHEARWARP_INLINE int nextLive(int* links, int u) {
 // First intermediate pixel u ≥ 0 whose coordinate q(u) = u / scale + base reaches `target`
 // (strictly passes it when `strict`), computed with the same arithmetic the loop uses, so a
 // pixel is never lost or counted twice at a run boundary.
-SVR_SHEARWARP_INLINE int firstPixel(double target, double base, double inv_scale, int scale, bool strict) {
+SVR_SHEARWARP_INLINE int firstPixel(double target, double base, double inv_scale, int scale,
+                                    bool strict) {
   // A guess within one of the answer (truncation: std::ceil is a libm call on the baseline
   // x86-64 target), then corrected.
   int u = static_cast<int>((target - base) * scale);
@@ -69,7 +70,7 @@ SVR_SHEARWARP_INLINE int firstPixel(double target, double base, double inv_scale
 
 // acc = r0 + frac (r1 − r0) over a table row (width: a multiple of 4, SliceTable's stride).
 SVR_SHEARWARP_INLINE void lerpRows(const float* r0, const float* r1, float frac,
-                                            int width, float* acc) {
+                                   int width, float* acc) {
   for (int j = 0; j < width; j += 4) {
     const Float4 a = load4(r0 + j);
     store4(acc + j, a + frac * (load4(r1 + j) - a));
@@ -78,8 +79,8 @@ SVR_SHEARWARP_INLINE void lerpRows(const float* r0, const float* r1, float frac,
 
 // A label map's sample: the four corners' table rows (one per label) weighted bilinearly.
 SVR_SHEARWARP_INLINE void blendLabels(const SliceTable& table,
-                                               const VoxelRecord* const c[4], const float w[4],
-                                               int width, float* acc) {
+                                      const VoxelRecord* const c[4], const float w[4],
+                                      int width, float* acc) {
   for (int j = 0; j < width; j += 4) {
     Float4 sum = w[0] * load4(table.row(static_cast<int>(c[0]->bin)) + j);
     for (int n = 1; n < 4; ++n) sum += w[n] * load4(table.row(static_cast<int>(c[n]->bin)) + j);
@@ -107,7 +108,7 @@ struct SampleBatch {
 // those that became opaque (links then skips them from the next slice on).
 template <class PerRow>
 SVR_SHEARWARP_INLINE void forEachSample(const CompositeJob& job, int v, int slice,
-                                                 int* links, const PerRow& perRow) {
+                                        int* links, const PerRow& perRow) {
   const AxisEncoding& enc = *job.encoding;
   const ShearWarpFactorization& f = *job.view;
   const int width = job.image->width;
@@ -161,7 +162,7 @@ SVR_SHEARWARP_INLINE void forEachSample(const CompositeJob& job, int v, int slic
 // One slice's samples on intermediate scanline v, post-classified.
 template <int K, bool kSpectralT>
 SVR_SHEARWARP_INLINE void compositeSlice(const CompositeJob& job, int v, int slice,
-                                                  int* links) {
+                                         int* links) {
   const ClassifiedVolume& cv = *job.volume;
   const AxisEncoding& enc = *job.encoding;
   const SliceTable& table = *job.table;
@@ -244,7 +245,7 @@ SVR_SHEARWARP_INLINE void compositeSlice(const CompositeJob& job, int v, int sli
 // α and t corrected for the slice spacing.
 template <int K, bool kSpectralT>
 SVR_SHEARWARP_INLINE void compositeSlicePre(const CompositeJob& job, int v, int slice,
-                                                     int* links) {
+                                            int* links) {
   const ClassifiedVolume& cv = *job.volume;
   const PreclassifiedAxis& pre = *job.pre;
   const int k = K > 0 ? K : cv.k;
@@ -259,7 +260,8 @@ SVR_SHEARWARP_INLINE void compositeSlicePre(const CompositeJob& job, int v, int 
     const float* rec1 = pre.rowRecords(slice, j0 + 1);
     const std::uint16_t* nrm0 = pre.rowNormals(slice, j0);
     const std::uint16_t* nrm1 = pre.rowNormals(slice, j0 + 1);
-    return [&, rec0, rec1, nrm0, nrm1, fj](SampleBatch& b) __attribute__((always_inline)) {
+    return [&, rec0, rec1, nrm0, nrm1, fj](SampleBatch& b)
+               __attribute__((always_inline)) {
       for (int p = 0; p < b.count; ++p) {
         const int i0 = b.i0[p];
         const float fi = b.fi[p];
@@ -303,7 +305,8 @@ SVR_SHEARWARP_INLINE void compositeSlicePre(const CompositeJob& job, int v, int 
 // was the first load of a voxel record. A band's scanlines only ever receive their own rays,
 // so bands composite independently: no barrier per slice.
 template <int K, bool kSpectralT, bool kPre>
-SVR_SHEARWARP_TARGET void compositeBand(const CompositeJob& job, int v0, int v1, std::vector<int>& links) {
+SVR_SHEARWARP_TARGET void compositeBand(const CompositeJob& job, int v0, int v1,
+                                        std::vector<int>& links) {
   const int width = job.image->width;
   const int n_k = job.slice_end - job.slice_begin;
   const int lines = v1 - v0;
