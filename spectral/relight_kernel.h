@@ -55,6 +55,14 @@ struct KernelForce {
 RelightKernelChoice selectRelightKernel(int plane_count, SampleStorage storage,
                                         RelitEncoding encoding, KernelForce force = {});
 
+// Whether a renderer whose kernels have an AVX2 compilation (`compiled`: built for this target)
+// takes it: this CPU has AVX2 and `force` does not ask for the portable path. The raycaster and
+// shear-warp choose their kernels by this.
+inline bool takeAvx2Kernels(bool compiled, const KernelForce& force) {
+  return compiled && availableKernelIsas().back() == KernelIsa::kAvx2 &&
+         force.isa.value_or(KernelIsa::kAvx2) == KernelIsa::kAvx2;
+}
+
 // Per-ISA entry points (one translation unit each); width 0 selects the dynamic path.
 namespace relight_portable {
 RelightFn pick(int width, SampleStorage storage, RelitEncoding encoding);

@@ -14,10 +14,8 @@ namespace {
 // (spectral's availableKernelIsas, the relight kernel's test) and the portable path is not
 // forced; the portable compilation otherwise.
 raycast::TileFn pickKernel(const raycast::KernelKey& key, const KernelForce& force) {
-  const bool avx2 = raycast::avx2::compiled() && availableKernelIsas().back() == KernelIsa::kAvx2;
-  if (avx2 && force.isa.value_or(KernelIsa::kAvx2) == KernelIsa::kAvx2)
-    return raycast::avx2::pick(key);
-  return raycast::portable::pick(key);
+  return takeAvx2Kernels(raycast::avx2::compiled(), force) ? raycast::avx2::pick(key)
+                                                            : raycast::portable::pick(key);
 }
 
 // Both kernels hold a cell's corner offsets as 32-bit integers (the AVX2 gathers take them as

@@ -22,10 +22,8 @@ namespace {
 // The kernel for this CPU, chosen once per render: AVX2 where the CPU has it (and FMA) and the
 // portable path is not forced (as the raycaster chooses); the portable compilation otherwise.
 shearwarp::BandFn pickKernel(const shearwarp::KernelKey& key, const KernelForce& force) {
-  const bool avx2 = shearwarp::avx2::compiled() && availableKernelIsas().back() == KernelIsa::kAvx2;
-  if (avx2 && force.isa.value_or(KernelIsa::kAvx2) == KernelIsa::kAvx2)
-    return shearwarp::avx2::pick(key);
-  return shearwarp::portable::pick(key);
+  return takeAvx2Kernels(shearwarp::avx2::compiled(), force) ? shearwarp::avx2::pick(key)
+                                                              : shearwarp::portable::pick(key);
 }
 
 // The range of the transmission coefficients (factor models may leave [0, 1]) and 1.
