@@ -52,16 +52,23 @@ void warpToFinal(const IntermediateImage& im, const ShearWarpFactorization& f,
   const std::size_t pixels = out.pixels();
   float* planes = out.planeFloat(0).data();
   const int width = out.width(), height = out.height();
-  // Empty space, for taps outside the intermediate image.
-  std::vector<float> empty(channels, 0.f);
-  std::fill(empty.begin() + im.s_channels, empty.end(), 1.f);
+  // Empty space, for taps outside the intermediate image (padded as the image is, so that it
+  // too may be read four channels at a time).
+  std::vector<float> empty(channels + IntermediateImage::kSlack, 0.f);
+  std::fill(empty.begin() + im.s_channels, empty.begin() + channels, 1.f);
   const std::size_t row_stride = static_cast<std::size_t>(im.width) * channels;
+  // Output pixel `at` from four taps: their channels blended four at a time; the lanes past
+  // the last channel read the next pixel or the slack and are not stored.
   const auto blend = [&](std::size_t at, const float* p00, const float* p10, const float* p01,
                          const float* p11, float fu, float fv) {
     const float w00 = (1 - fu) * (1 - fv), w10 = fu * (1 - fv), w01 = (1 - fu) * fv,
                 w11 = fu * fv;
-    for (int c = 0; c < channels; ++c)
-      planes[c * pixels + at] = w00 * p00[c] + w10 * p10[c] + w01 * p01[c] + w11 * p11[c];
+    for (int c = 0; c < channels; c += 4) {
+      const Float4 sum = w00 * load4(p00 + c) + w10 * load4(p10 + c) + w01 * load4(p01 + c) +
+                         w11 * load4(p11 + c);
+      for (int lane = 0; lane < std::min(4, channels - c); ++lane)
+        planes[(c + lane) * pixels + at] = sum[lane];
+    }
   };
 
 #pragma omp parallel for schedule(static)
@@ -73,25 +80,15 @@ void warpToFinal(const IntermediateImage& im, const ShearWarpFactorization& f,
     const double u_row = f.warp_u[0] + f.warp_u[2] * py, v_row = f.warp_v[0] + f.warp_v[2] * py;
     const std::size_t row_index = static_cast<std::size_t>(y) * width;
     // Inside: all four taps in the image and both coordinates ≥ 0, so truncation is the floor
-    // (std::floor is a libm call on the baseline x86-64 target). The taps' channels blend four
-    // at a time (the same arithmetic per channel as blend's), the lanes past the last channel
-    // read the next pixel or the image's slack and are not stored.
+    // (std::floor is a libm call on the baseline x86-64 target).
     for (int x = inner0; x < inner1; ++x) {
       const double px = x + 0.5;
       const double u = u_row + f.warp_u[1] * px, v = v_row + f.warp_v[1] * px;
       const int iu = static_cast<int>(u), iv = static_cast<int>(v);
-      const float fu = static_cast<float>(u - iu), fv = static_cast<float>(v - iv);
-      const float w00 = (1 - fu) * (1 - fv), w10 = fu * (1 - fv), w01 = (1 - fu) * fv,
-                  w11 = fu * fv;
       const float* p00 = im.pixel(iu, iv);
       const float* p01 = p00 + row_stride;
-      const std::size_t at = row_index + x;
-      for (int c = 0; c < channels; c += 4) {
-        const Float4 sum = w00 * load4(p00 + c) + w10 * load4(p00 + channels + c) +
-                           w01 * load4(p01 + c) + w11 * load4(p01 + channels + c);
-        for (int lane = 0; lane < std::min(4, channels - c); ++lane)
-          planes[(c + lane) * pixels + at] = sum[lane];
-      }
+      blend(row_index + x, p00, p00 + channels, p01, p01 + channels, static_cast<float>(u - iu),
+            static_cast<float>(v - iv));
     }
     // The border pixels, with every tap checked.
     const auto border = [&](int x) {
