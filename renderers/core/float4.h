@@ -1,7 +1,7 @@
 #pragma once
 // Four floats as one vector (GCC's vector extension: SSE on the baseline target, AVX's encoding
 // inside the AVX2 kernels), for work done four lanes at a time with each lane's arithmetic the
-// same as the scalar code's: shear-warp's records, table rows and warp taps, and phong4
+// same as the scalar code's: shear-warp's records (blended and encoded), table rows and warp taps, and phong4
 // (classified_sample.h). Loads and stores go through memcpy, one unaligned move each.
 
 #include <cmath>
@@ -39,6 +39,18 @@ typedef std::int32_t Int4 __attribute__((vector_size(16)));
 #else
   return Float4{std::sqrt(x[0]), std::sqrt(x[1]), std::sqrt(x[2]), std::sqrt(x[3])};
 #endif
+}
+
+// Rows to columns: afterwards a holds the first lanes of a, b, c, d, b their second lanes, and so on.
+[[gnu::always_inline]] inline void transpose4(Float4& a, Float4& b, Float4& c, Float4& d) {
+  const Float4 ab_low = __builtin_shufflevector(a, b, 0, 4, 1, 5);
+  const Float4 ab_high = __builtin_shufflevector(a, b, 2, 6, 3, 7);
+  const Float4 cd_low = __builtin_shufflevector(c, d, 0, 4, 1, 5);
+  const Float4 cd_high = __builtin_shufflevector(c, d, 2, 6, 3, 7);
+  a = __builtin_shufflevector(ab_low, cd_low, 0, 1, 4, 5);
+  b = __builtin_shufflevector(ab_low, cd_low, 2, 3, 6, 7);
+  c = __builtin_shufflevector(ab_high, cd_high, 0, 1, 4, 5);
+  d = __builtin_shufflevector(ab_high, cd_high, 2, 3, 6, 7);
 }
 
 }  // namespace svr

@@ -4,8 +4,10 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 
 #include "renderers/core/classified_sample.h"
+#include "renderers/core/float4.h"
 #include "renderers/core/volume.h"
 #include "spectral/error.h"
 
@@ -16,64 +18,259 @@ std::size_t indexOf(const Dims& d, int x, int y, int z) {
   return (static_cast<std::size_t>(z) * d[1] + y) * d[0] + x;
 }
 
-// A voxel row of one slice as strides into the volume: voxel i of the row is at
-// base + i · step_i; the neighbours along the three axes are ± stride[a].
-struct RowAddress {
-  std::size_t base;
-  std::ptrdiff_t step_i;
+// Where one principal axis's slices lie in the volume: voxel i of row j of slice k is at
+// k · stride_k + j · stride_j + i · stride_i.
+struct SliceLayout {
+  int n_i, n_j, n_k;
+  std::size_t stride_i, stride_j, stride_k;
 };
 
-// The bins a voxel's value can blend (cellOccupied's floor and ceil, per voxel: the floor of a
-// cell's minimum is the minimum of its corners' floors, the ceiling of its maximum the maximum
-// of their ceilings), or for label maps whether the label is visible (lo = hi = 0 or 1 against
-// a prefix of [0, 0, 1]).
-struct BinRange {
-  std::int32_t lo, hi;
+// One slice of a float array of the volume as contiguous rows: row j starts at
+// data + j · row_stride.
+struct SliceRows {
+  const float* data;
+  std::size_t row_stride;
+  const float* row(int j) const { return data + static_cast<std::size_t>(j) * row_stride; }
 };
 
-void rowBins(const ClassifiedVolume& cv, const RowAddress& row, int n, BinRange* out) {
-  if (cv.labels) {
-    for (int i = 0; i < n; ++i) {
-      const int visible = cv.alpha[cv.label[row.base + i * row.step_i]] > 0.f;
-      out[i] = {visible, visible};
+// Slices k0 − 1 .. k1 of an array (clamped to the volume), for the group of slices k0 .. k1 − 1
+// that one thread encodes (the neighbours give the gradient along the axis). The rows of y and z
+// slices run along x, contiguous in memory, and are read in place. The rows of x slices run
+// along y, a volume row apart: read in place, every voxel would be a cache line of its own, read
+// once per slice that holds it; gathered for the group at once, each line is read once.
+class SliceGroup {
+ public:
+  SliceGroup(const SliceLayout& layout, const float* array, int k0, int k1,
+             std::vector<float>& buffer)
+      : layout_(layout), array_(array), first_(std::max(k0 - 1, 0)),
+        last_(std::min(k1, layout.n_k - 1)) {
+    if (layout.stride_i == 1) return;
+    const int count = last_ - first_ + 1;
+    // Planes a cache line more than a slice apart: slices of power-of-two size would otherwise
+    // map every plane's row to the same cache sets.
+    plane_ = static_cast<std::size_t>(layout.n_i) * layout.n_j + 16;
+    buffer.resize(count * plane_);
+    // A transpose, in tiles of kTile voxels of a row by every slice of the group: each voxel's
+    // slices are contiguous in the volume and its row neighbours a volume row apart, so a tile
+    // reads kTile short contiguous runs and writes kTile-voxel runs of each slice.
+    constexpr int kTile = 8;
+    for (int j = 0; j < layout.n_j; ++j) {
+      const float* from = array + j * layout.stride_j + first_ * layout.stride_k;
+      float* to = buffer.data() + static_cast<std::size_t>(j) * layout.n_i;
+      for (int i0 = 0; i0 < layout.n_i; i0 += kTile) {
+        const int width = std::min(kTile, layout.n_i - i0);
+        // The next tile's lines, which the hardware does not see coming.
+        for (int i = i0 + kTile; i < std::min(i0 + 2 * kTile, layout.n_i); ++i)
+          for (int n = 0; n < count; n += 16) __builtin_prefetch(from + i * layout.stride_i + n);
+        for (int n = 0; n < count; ++n)
+          for (int i = i0; i < i0 + width; ++i)
+            to[n * plane_ + i] = from[i * layout.stride_i + n * layout.stride_k];
+      }
     }
-    return;
+    gathered_ = buffer.data();
   }
-  const int last = cv.entries - 1;
-  const double lo = cv.value_lo, scale = cv.value_scale, top = last;
-  for (int i = 0; i < n; ++i) {
-    // floor and ceil clamped to [0, last], by truncation (std::floor is a libm call on the
-    // baseline x86-64 target): the same integers for every bin.
-    const double bin = std::clamp((cv.values[row.base + i * row.step_i] - lo) * scale, 0.0, top);
-    const int down = static_cast<int>(bin);
-    out[i] = {down, down + (static_cast<double>(down) < bin ? 1 : 0)};
+  SliceRows slice(int k) const {
+    k = std::clamp(k, 0, layout_.n_k - 1);
+    if (!gathered_) return {array_ + k * layout_.stride_k, layout_.stride_j};
+    return {gathered_ + (k - first_) * plane_, static_cast<std::size_t>(layout_.n_i)};
+  }
+
+ private:
+  SliceLayout layout_;
+  const float* array_;
+  int first_, last_;
+  const float* gathered_ = nullptr;
+  std::size_t plane_ = 0;
+};
+
+// Which cells can hold a non-transparent sample, from each voxel's key: its bin coordinate
+// (scalar volumes), or 1 for a visible label and 0 for a hidden one. A cell's samples blend the
+// bins floor(min) .. ceil(max) of its corners' keys (clamped to the table); where the visible
+// entries are one contiguous range [first, last] — most transfer functions — that range meets
+// them exactly when max > first − 1 and min < last + 1, two comparisons a cell that vectorise.
+// Otherwise the cells that pass are checked against the prefix of visible entries.
+struct Visibility {
+  bool any = false;
+  float above = -INFINITY, below = INFINITY;  // visible: max > above and min < below
+  bool contiguous = true;
+  std::vector<int> prefix;  // nonzeroOpacityPrefix, for the non-contiguous case
+  int last = 0;
+
+  explicit Visibility(const ClassifiedVolume& cv) {
+    if (cv.labels) {
+      any = std::any_of(cv.alpha.begin(), cv.alpha.end(), [](float a) { return a > 0.f; });
+      above = 0.f;
+      return;
+    }
+    prefix = nonzeroOpacityPrefix(cv);
+    last = cv.entries - 1;
+    int first_visible = -1, last_visible = -1;
+    for (int e = 0; e < cv.entries; ++e)
+      if (cv.alpha[e] > 0.f) {
+        if (first_visible < 0) first_visible = e;
+        last_visible = e;
+      }
+    any = first_visible >= 0;
+    if (!any) return;
+    if (first_visible > 0) above = static_cast<float>(first_visible - 1);
+    if (last_visible < last) below = static_cast<float>(last_visible + 1);
+    contiguous = prefix[last_visible + 1] - prefix[first_visible] == last_visible - first_visible + 1;
+  }
+
+  // occupied[i] for the cells between key rows a and b (n voxels each).
+  void cells(const float* a, const float* b, int n, std::uint8_t* occupied) const {
+    for (int i = 0; i + 1 < n; ++i) {
+      const float lo = std::min(std::min(a[i], a[i + 1]), std::min(b[i], b[i + 1]));
+      const float hi = std::max(std::max(a[i], a[i + 1]), std::max(b[i], b[i + 1]));
+      occupied[i] = (hi > above) & (lo < below);
+    }
+    if (contiguous) return;
+    for (int i = 0; i + 1 < n; ++i) {
+      if (!occupied[i]) continue;
+      const float lo = std::min(std::min(a[i], a[i + 1]), std::min(b[i], b[i + 1]));
+      const float hi = std::max(std::max(a[i], a[i + 1]), std::max(b[i], b[i + 1]));
+      const int b0 = std::clamp(static_cast<int>(std::floor(lo)), 0, last);
+      const int b1 = std::clamp(static_cast<int>(std::ceil(hi)), 0, last);
+      occupied[i] = prefix[b1 + 1] - prefix[b0] > 0;
+    }
+  }
+};
+
+// The runs of occupied cells of one cell row (bytes 0 or 1), eight cells at a time through
+// stretches that are all transparent or all occupied.
+void appendRuns(const std::uint8_t* occupied, int cells, std::vector<CellRun>& runs) {
+  constexpr std::uint64_t kNone = 0, kAll = 0x0101010101010101ull;
+  const auto eight = [&](int i) {
+    std::uint64_t word;
+    std::memcpy(&word, occupied + i, sizeof word);
+    return word;
+  };
+  for (int i = 0; i < cells;) {
+    if (i + 8 <= cells && eight(i) == kNone) {
+      i += 8;
+      continue;
+    }
+    if (!occupied[i]) {
+      ++i;
+      continue;
+    }
+    const int begin = i;
+    while (i + 8 <= cells && eight(i) == kAll) i += 8;
+    while (i < cells && occupied[i]) ++i;
+    runs.push_back({begin, i});
   }
 }
 
-// The voxel records of voxels lo .. hi of a row: bin coordinate (or label) and the central differences
-// of the shading field, clamped at the border as the raycaster's, in world units.
-void appendRowRecords(const ClassifiedVolume& cv, const int p0[3], int axis_i, int lo, int hi,
-                      std::vector<VoxelRecord>& out) {
-  const Dims& d = cv.dims;
-  const std::size_t stride[3] = {1, static_cast<std::size_t>(d[0]),
-                                 static_cast<std::size_t>(d[0]) * d[1]};
-  const float* f = cv.shadingField().data();
-  const float half_inv[3] = {static_cast<float>(0.5 / cv.spacing.x),
-                             static_cast<float>(0.5 / cv.spacing.y),
-                             static_cast<float>(0.5 / cv.spacing.z)};
-  int p[3] = {p0[0], p0[1], p0[2]};
-  for (int i = lo; i <= hi; ++i) {
-    p[axis_i] = i;
-    const std::size_t index = p[0] * stride[0] + p[1] * stride[1] + p[2] * stride[2];
-    VoxelRecord rec;
-    rec.bin = cv.labels ? static_cast<float>(cv.label[index]) : binCoordinate(cv, cv.values[index]);
-    for (int a = 0; a < 3; ++a) {
-      const std::size_t down = p[a] > 0 ? stride[a] : 0;
-      const std::size_t up = p[a] + 1 < d[a] ? stride[a] : 0;
-      rec.gradient[a] = (f[index + up] - f[index - down]) * half_inv[a];
-    }
-    out.push_back(rec);
+// What one thread keeps between the slices it encodes.
+struct EncoderScratch {
+  std::vector<float> keys;          // the slice's keys, row after row
+  std::vector<std::uint8_t> occupied;  // one cell row
+  std::vector<float> values, field;    // SliceGroup's gathered slices
+  BlockArena records;                  // the records of the slices this thread encodes
+};
+
+// Everything a slice's encoding reads.
+struct SliceSource {
+  const ClassifiedVolume& cv;
+  const SliceLayout& layout;
+  int axis, axis_i, axis_j;
+  const Visibility& visibility;
+};
+
+// The voxel records of row j of slice k, voxels lo .. lo + count − 1: the bin coordinate (or
+// label number) and the central differences of the shading field, clamped at the border as the
+// raycaster's, in world units.
+void fillRowRecords(const SliceSource& src, const SliceGroup& values, const SliceGroup& field,
+                    const float* keys, int k, int j, const RowSpan& span, VoxelRecord* out) {
+  const SliceLayout& l = src.layout;
+  const double* sp = &src.cv.spacing.x;
+  const float h_i = static_cast<float>(0.5 / sp[src.axis_i]);
+  const float h_j = static_cast<float>(0.5 / sp[src.axis_j]);
+  const float h_k = static_cast<float>(0.5 / sp[src.axis]);
+  const SliceRows here = field.slice(k);
+  const float* f = here.row(j);
+  const float* f_jm = here.row(std::max(j - 1, 0));
+  const float* f_jp = here.row(std::min(j + 1, l.n_j - 1));
+  const float* f_km = field.slice(k - 1).row(j);
+  const float* f_kp = field.slice(k + 1).row(j);
+  const float* bins = src.cv.labels ? values.slice(k).row(j) : keys;
+  const auto one = [&](int n) {
+    const int i = span.lo + n;
+    VoxelRecord& rec = out[n];
+    rec.bin = bins[i];
+    rec.gradient[src.axis_i] = (f[std::min(i + 1, l.n_i - 1)] - f[std::max(i - 1, 0)]) * h_i;
+    rec.gradient[src.axis_j] = (f_jp[i] - f_jm[i]) * h_j;
+    rec.gradient[src.axis] = (f_kp[i] - f_km[i]) * h_k;
+  };
+  // Four voxels at a time where both row neighbours exist, with each lane's arithmetic the
+  // scalar one's: the components as vectors (record lane 0 the bin, 1 + a the gradient along
+  // world axis a), transposed into four records.
+  int n = 0;
+  if (span.lo == 0) one(n++);
+  for (; n + 4 <= span.count && span.lo + n + 4 < l.n_i; n += 4) {
+    const int i = span.lo + n;
+    Float4 lane[4];
+    lane[0] = load4(bins + i);
+    lane[1 + src.axis_i] = (load4(f + i + 1) - load4(f + i - 1)) * splat4(h_i);
+    lane[1 + src.axis_j] = (load4(f_jp + i) - load4(f_jm + i)) * splat4(h_j);
+    lane[1 + src.axis] = (load4(f_kp + i) - load4(f_km + i)) * splat4(h_k);
+    transpose4(lane[0], lane[1], lane[2], lane[3]);
+    for (int m = 0; m < 4; ++m) std::memcpy(&out[n + m], &lane[m], sizeof(VoxelRecord));
   }
+  for (; n < span.count; ++n) one(n);
+}
+
+void encodeSlice(const SliceSource& src, const SliceGroup& values, const SliceGroup& field, int k,
+                 EncoderScratch& scratch, SliceEncoding& s) {
+  const ClassifiedVolume& cv = src.cv;
+  const int n_i = src.layout.n_i, n_j = src.layout.n_j;
+  s.run_offsets.assign(n_j, 0);
+  s.rows.assign(n_j, RowSpan{});
+  if (!src.visibility.any) return;
+  // Keys: every voxel's bin coordinate, or its label's visibility.
+  scratch.keys.resize(static_cast<std::size_t>(n_i) * n_j);
+  const SliceRows rows = values.slice(k);
+  for (int j = 0; j < n_j; ++j) {
+    const float* v = rows.row(j);
+    float* key = scratch.keys.data() + static_cast<std::size_t>(j) * n_i;
+    if (cv.labels) {
+      for (int i = 0; i < n_i; ++i) key[i] = cv.alpha[static_cast<int>(v[i])] > 0.f ? 1.f : 0.f;
+    } else {
+      for (int i = 0; i < n_i; ++i) key[i] = binCoordinate(cv, v[i]);
+    }
+  }
+  scratch.occupied.resize(n_i);
+  for (int j = 0; j + 1 < n_j; ++j) {
+    s.run_offsets[j] = static_cast<std::int32_t>(s.runs.size());
+    const float* a = scratch.keys.data() + static_cast<std::size_t>(j) * n_i;
+    src.visibility.cells(a, a + n_i, n_i, scratch.occupied.data());
+    appendRuns(scratch.occupied.data(), n_i - 1, s.runs);
+  }
+  s.run_offsets[n_j - 1] = static_cast<std::int32_t>(s.runs.size());
+  // Voxel row j is touched by the cells of cell rows j − 1 and j.
+  std::size_t stored = 0;
+  for (int j = 0; j < n_j; ++j) {
+    int lo = n_i, hi = -1;
+    for (int cj = std::max(j - 1, 0); cj <= std::min(j, n_j - 2); ++cj) {
+      const auto first = s.runs.begin() + s.run_offsets[cj];
+      const auto last = s.runs.begin() + s.run_offsets[cj + 1];
+      if (first == last) continue;
+      lo = std::min(lo, first->begin);
+      hi = std::max(hi, (last - 1)->end);  // cell end − 1 + its right voxel
+    }
+    RowSpan& r = s.rows[j];
+    r.offset = stored;
+    if (hi < lo) continue;
+    r.lo = lo;
+    r.count = hi - lo + 1;
+    stored += r.count;
+  }
+  s.records = scratch.records.allocate<VoxelRecord>(stored);
+  s.record_count = stored;
+  for (int j = 0; j < n_j; ++j)
+    if (s.rows[j].count > 0)
+      fillRowRecords(src, values, field, scratch.keys.data() + static_cast<std::size_t>(j) * n_i,
+                     k, j, s.rows[j], s.records + s.rows[j].offset);
 }
 
 }  // namespace
@@ -86,7 +283,7 @@ std::vector<int> nonzeroOpacityPrefix(const ClassifiedVolume& cv) {
 
 bool cellOccupied(const ClassifiedVolume& cv, std::span<const int> nonzero_prefix, int x, int y,
                   int z, int a, int b) {
-  float vmin = INFINITY, vmax = -INFINITY;
+  float bmin = INFINITY, bmax = -INFINITY;
   for (int n = 0; n < 4; ++n) {
     int p[3] = {x, y, z};
     p[a] += n & 1;
@@ -95,18 +292,16 @@ bool cellOccupied(const ClassifiedVolume& cv, std::span<const int> nonzero_prefi
     if (cv.labels) {
       if (cv.alpha[cv.label[i]] > 0.f) return true;
     } else {
-      vmin = std::min(vmin, cv.values[i]);
-      vmax = std::max(vmax, cv.values[i]);
+      bmin = std::min(bmin, binCoordinate(cv, cv.values[i]));
+      bmax = std::max(bmax, binCoordinate(cv, cv.values[i]));
     }
   }
   if (cv.labels) return false;
-  // Every bilinear sample lies in [vmin, vmax]; its table lookup blends bins floor..ceil (a
-  // bin hit exactly takes its upper neighbour with weight 0).
+  // Every bilinear sample's bin coordinate lies in [bmin, bmax]; its table lookup blends bins
+  // floor..ceil (a bin hit exactly takes its upper neighbour with weight 0).
   const int last = cv.entries - 1;
-  const int b0 = std::clamp(
-      static_cast<int>(std::floor((vmin - cv.value_lo) * cv.value_scale)), 0, last);
-  const int b1 = std::clamp(
-      static_cast<int>(std::ceil((vmax - cv.value_lo) * cv.value_scale)), 0, last);
+  const int b0 = std::clamp(static_cast<int>(std::floor(bmin)), 0, last);
+  const int b1 = std::clamp(static_cast<int>(std::ceil(bmax)), 0, last);
   return nonzero_prefix[b1 + 1] - nonzero_prefix[b0] > 0;
 }
 
@@ -122,67 +317,31 @@ AxisEncoding::AxisEncoding(const ClassifiedVolume& cv, int axis)
     throw Error(fmt::format("shearwarp: a {}×{}×{} volume is too thin to shear (at least 2 "
                             "voxels along each axis)",
                             cv.dims[0], cv.dims[1], cv.dims[2]));
-  // Label maps classify each corner alone: a cell is occupied when any corner's label is
-  // visible, a prefix over the two "bins" 0 (hidden) and 1 (visible).
-  const std::vector<int> prefix = cv.labels ? std::vector<int>{0, 0, 1} : nonzeroOpacityPrefix(cv);
   const std::size_t stride[3] = {1, static_cast<std::size_t>(cv.dims[0]),
                                  static_cast<std::size_t>(cv.dims[0]) * cv.dims[1]};
+  const SliceLayout layout{n_i_, n_j_, n_k_, stride[axis_i_], stride[axis_j_], stride[axis_]};
+  const Visibility visibility(cv);
+  const SliceSource source{cv, layout, axis_, axis_i_, axis_j_, visibility};
+  // Gathered slices go in groups of 16 (a cache line of floats along the axis).
+  const int group = layout.stride_i == 1 ? 1 : 64;
+  const int groups = (n_k_ + group - 1) / group;
   slices_.resize(n_k_);
   const bool parallel =
       static_cast<std::int64_t>(n_i_) * n_j_ * n_k_ >= kParallelVoxels;
 #pragma omp parallel if (parallel)
   {
-    std::vector<BinRange> below(n_i_), above(n_i_);
-    std::vector<std::uint8_t> occupied(n_i_);
+    EncoderScratch scratch;
 #pragma omp for schedule(dynamic)
-    for (int k = 0; k < n_k_; ++k) {
-      SliceEncoding& s = slices_[k];
-      s.run_offsets.assign(n_j_, 0);
-      const auto rowOf = [&](int j) {
-        return RowAddress{k * stride[axis_] + j * stride[axis_j_],
-                          static_cast<std::ptrdiff_t>(stride[axis_i_])};
-      };
-      rowBins(cv, rowOf(0), n_i_, below.data());
-      for (int j = 0; j + 1 < n_j_; ++j) {
-        s.run_offsets[j] = static_cast<std::int32_t>(s.runs.size());
-        rowBins(cv, rowOf(j + 1), n_i_, above.data());
-        // Cell i spans voxels i, i + 1 of rows j, j + 1: the range of their bins.
-        for (int i = 0; i + 1 < n_i_; ++i) {
-          const int b0 = std::min({below[i].lo, below[i + 1].lo, above[i].lo, above[i + 1].lo});
-          const int b1 = std::max({below[i].hi, below[i + 1].hi, above[i].hi, above[i + 1].hi});
-          occupied[i] = prefix[b1 + 1] - prefix[b0] > 0;
-        }
-        for (int i = 0; i + 1 < n_i_; ++i) {
-          if (!occupied[i]) continue;
-          const int begin = i;
-          while (i + 1 < n_i_ && occupied[i]) ++i;
-          s.runs.push_back({begin, i});
-        }
-        std::swap(below, above);
-      }
-      s.run_offsets[n_j_ - 1] = static_cast<std::int32_t>(s.runs.size());
-      // Voxel row j is touched by the cells of cell rows j − 1 and j.
-      s.rows.resize(n_j_);
-      int p[3];
-      p[axis_] = k;
-      for (int j = 0; j < n_j_; ++j) {
-        int lo = n_i_, hi = -1;
-        for (int cj = std::max(j - 1, 0); cj <= std::min(j, n_j_ - 2); ++cj) {
-          const auto first = s.runs.begin() + s.run_offsets[cj];
-          const auto last = s.runs.begin() + s.run_offsets[cj + 1];
-          if (first == last) continue;
-          lo = std::min(lo, first->begin);
-          hi = std::max(hi, (last - 1)->end);  // cell end − 1 + its right voxel
-        }
-        RowSpan& r = s.rows[j];
-        r.offset = s.records.size();
-        if (hi < lo) continue;
-        r.lo = lo;
-        r.count = hi - lo + 1;
-        p[axis_j_] = j;
-        appendRowRecords(cv, p, axis_i_, lo, hi, s.records);
-      }
+    for (int g = 0; g < groups; ++g) {
+      const int k0 = g * group, k1 = std::min(k0 + group, n_k_);
+      const SliceGroup values(layout, cv.values.data(), k0, k1, scratch.values);
+      const SliceGroup field = cv.labels
+          ? SliceGroup(layout, cv.shading_field.data(), k0, k1, scratch.field)
+          : values;
+      for (int k = k0; k < k1; ++k) encodeSlice(source, values, field, k, scratch, slices_[k]);
     }
+#pragma omp critical(svr_shearwarp_records)
+    records_.adopt(std::move(scratch.records));
   }
 }
 
@@ -190,13 +349,13 @@ std::size_t AxisEncoding::bytes() const {
   std::size_t n = 0;
   for (const SliceEncoding& s : slices_)
     n += s.run_offsets.size() * sizeof(std::int32_t) + s.runs.size() * sizeof(CellRun) +
-         s.rows.size() * sizeof(RowSpan) + s.records.size() * sizeof(VoxelRecord);
+         s.rows.size() * sizeof(RowSpan) + s.record_count * sizeof(VoxelRecord);
   return n;
 }
 
 std::size_t AxisEncoding::storedVoxels() const {
   std::size_t n = 0;
-  for (const SliceEncoding& s : slices_) n += s.records.size();
+  for (const SliceEncoding& s : slices_) n += s.record_count;
   return n;
 }
 

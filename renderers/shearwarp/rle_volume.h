@@ -20,6 +20,7 @@
 #include <span>
 #include <vector>
 
+#include "renderers/core/block_arena.h"
 #include "renderers/core/classification.h"
 
 namespace svr::shearwarp {
@@ -44,7 +45,8 @@ struct SliceEncoding {
   std::vector<std::int32_t> run_offsets;  // n_j: cell row j's runs are [off[j], off[j + 1])
   std::vector<CellRun> runs;
   std::vector<RowSpan> rows;  // n_j voxel rows
-  std::vector<VoxelRecord> records;
+  VoxelRecord* records = nullptr;  // record_count, in the axis encoding's arena
+  std::size_t record_count = 0;
 };
 
 // The encoding for one principal axis.
@@ -76,13 +78,14 @@ class AxisEncoding {
   const VoxelRecord* rowRecords(int k, int j) const {
     const SliceEncoding& s = slices_[k];
     const RowSpan& r = s.rows[j];
-    return s.records.data() + static_cast<std::ptrdiff_t>(r.offset) - r.lo;
+    return s.records + static_cast<std::ptrdiff_t>(r.offset) - r.lo;
   }
   std::size_t bytes() const;
   std::size_t storedVoxels() const;
 
  private:
   int axis_, axis_i_, axis_j_, n_i_, n_j_, n_k_;
+  BlockArena records_;  // every slice's voxel records
   std::vector<SliceEncoding> slices_;
 };
 

@@ -1,0 +1,49 @@
+#include "renderers/core/block_arena.h"
+
+#include <algorithm>
+#include <cstdint>
+#include <cstdlib>
+#include <new>
+
+#if defined(__linux__)
+#include <sys/mman.h>
+#endif
+
+namespace svr {
+
+void BlockArena::Free::operator()(std::byte* p) const { std::free(p); }
+
+void* BlockArena::allocateBytes(std::size_t bytes, std::size_t align) {
+  const std::size_t pad = (align - reinterpret_cast<std::uintptr_t>(next_) % align) % align;
+  if (next_ == nullptr || pad + bytes > left_) {
+    // Whole huge pages, aligned to one, so that every page of the block can be a huge one.
+    const std::size_t size =
+        (std::max(bytes, block_bytes_) + kHugePage - 1) / kHugePage * kHugePage;
+    auto* memory = static_cast<std::byte*>(std::aligned_alloc(kHugePage, size));
+    if (!memory) throw std::bad_alloc();
+#if defined(MADV_HUGEPAGE)
+    madvise(memory, size, MADV_HUGEPAGE);  // advice only: without huge pages it still works
+#endif
+    blocks_.push_back({std::unique_ptr<std::byte, Free>(memory), size});
+    next_ = memory, left_ = size;
+    return allocateBytes(bytes, align);
+  }
+  std::byte* at = next_ + pad;
+  next_ = at + bytes;
+  left_ -= pad + bytes;
+  return at;
+}
+
+void BlockArena::adopt(BlockArena&& other) {
+  for (Block& b : other.blocks_) blocks_.push_back(std::move(b));
+  other.blocks_.clear();
+  other.next_ = nullptr, other.left_ = 0;
+}
+
+std::size_t BlockArena::reservedBytes() const {
+  std::size_t n = 0;
+  for (const Block& b : blocks_) n += b.size;
+  return n;
+}
+
+}  // namespace svr
