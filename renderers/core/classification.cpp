@@ -1,5 +1,7 @@
 #include "renderers/core/classification.h"
 
+#include "renderers/core/classified_sample.h"
+
 #include <fmt/format.h>
 
 #include <algorithm>
@@ -104,8 +106,10 @@ void markOccupiedBlocks(const Volume& volume, ClassifiedVolume& cv) {
               }
             }
         if (!cv.labels) {
-          const int b0 = std::clamp(static_cast<int>(std::floor((vmin - cv.value_lo) * cv.value_scale)), 0, cv.entries - 1);
-          const int b1 = std::clamp(static_cast<int>(std::ceil((vmax - cv.value_lo) * cv.value_scale)), 0, cv.entries - 1);
+          // In binCoordinate's arithmetic, as the samples' bins (monotone in the value, so
+          // the block's range of bin coordinates is that of its extreme values).
+          const int b0 = std::clamp(static_cast<int>(std::floor(binCoordinate(cv, vmin))), 0, cv.entries - 1);
+          const int b1 = std::clamp(static_cast<int>(std::ceil(binCoordinate(cv, vmax))), 0, cv.entries - 1);
           occupied = nonzero_prefix[b1 + 1] - nonzero_prefix[b0] > 0;
         }
         cv.block_occupied[(static_cast<std::size_t>(bz) * cv.blocks[1] + by) * cv.blocks[0] + bx] =

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <span>
 
 #include "renderers/core/classified_sample.h"
 #include "renderers/core/float4.h"
@@ -117,15 +118,15 @@ struct Visibility {
     contiguous = prefix[last_visible + 1] - prefix[first_visible] == last_visible - first_visible + 1;
   }
 
-  // occupied[i] for the cells between key rows a and b (n voxels each).
-  void cells(const float* a, const float* b, int n, std::uint8_t* occupied) const {
-    for (int i = 0; i + 1 < n; ++i) {
+  // occupied[i] for the cells from ≤ i < to between key rows a and b.
+  void cells(const float* a, const float* b, int from, int to, std::uint8_t* occupied) const {
+    for (int i = from; i < to; ++i) {
       const float lo = std::min(std::min(a[i], a[i + 1]), std::min(b[i], b[i + 1]));
       const float hi = std::max(std::max(a[i], a[i + 1]), std::max(b[i], b[i + 1]));
       occupied[i] = (hi > above) & (lo < below);
     }
     if (contiguous) return;
-    for (int i = 0; i + 1 < n; ++i) {
+    for (int i = from; i < to; ++i) {
       if (!occupied[i]) continue;
       const float lo = std::min(std::min(a[i], a[i + 1]), std::min(b[i], b[i + 1]));
       const float hi = std::max(std::max(a[i], a[i + 1]), std::max(b[i], b[i + 1]));
@@ -136,16 +137,16 @@ struct Visibility {
   }
 };
 
-// The runs of occupied cells of one cell row (bytes 0 or 1), eight cells at a time through
-// stretches that are all transparent or all occupied.
-void appendRuns(const std::uint8_t* occupied, int cells, std::vector<CellRun>& runs) {
+// The runs of occupied cells from ≤ i < cells of one cell row (bytes 0 or 1), eight cells at a
+// time through stretches that are all transparent or all occupied.
+void appendRuns(const std::uint8_t* occupied, int from, int cells, std::vector<CellRun>& runs) {
   constexpr std::uint64_t kNone = 0, kAll = 0x0101010101010101ull;
   const auto eight = [&](int i) {
     std::uint64_t word;
     std::memcpy(&word, occupied + i, sizeof word);
     return word;
   };
-  for (int i = 0; i < cells;) {
+  for (int i = from; i < cells;) {
     if (i + 8 <= cells && eight(i) == kNone) {
       i += 8;
       continue;
@@ -161,8 +162,25 @@ void appendRuns(const std::uint8_t* occupied, int cells, std::vector<CellRun>& r
   }
 }
 
+// The cells of a slice that can hold anything, by the classification's occupied blocks
+// (ClassifiedVolume::kBlock³ voxels with their +1 border, so that every cell of a slice lies in
+// one): per block row, kBlock cell rows, the stretches of occupied blocks as cell ranges. Only
+// these are tested cell by cell; most of a CT is air.
+struct ActiveCells {
+  struct Range {
+    int begin, end;  // cells [begin, end)
+  };
+  std::vector<std::int32_t> offsets;  // block row b's ranges are [offsets[b], offsets[b + 1])
+  std::vector<Range> ranges;
+
+  std::span<const Range> of(int block_row) const {
+    return {ranges.data() + offsets[block_row], ranges.data() + offsets[block_row + 1]};
+  }
+};
+
 // What one thread keeps between the slices it encodes.
 struct EncoderScratch {
+  ActiveCells active;
   std::vector<float> keys;          // the slice's keys, row after row
   std::vector<std::uint8_t> occupied;  // one cell row
   std::vector<float> values, field;    // SliceGroup's gathered slices
@@ -220,31 +238,74 @@ void fillRowRecords(const SliceSource& src, const SliceGroup& values, const Slic
   for (; n < span.count; ++n) one(n);
 }
 
+void findActiveCells(const SliceSource& src, int k, ActiveCells& active) {
+  const ClassifiedVolume& cv = src.cv;
+  constexpr int B = ClassifiedVolume::kBlock;
+  const int cells_i = src.layout.n_i - 1, block_rows = (src.layout.n_j - 1 + B - 1) / B;
+  active.offsets.assign(1, 0);
+  active.ranges.clear();
+  for (int bj = 0; bj < block_rows; ++bj) {
+    if (cv.block_occupied.empty()) {
+      active.ranges.push_back({0, cells_i});
+    } else {
+      int b[3];
+      b[src.axis] = k / B;
+      b[src.axis_j] = bj;
+      for (int bi = 0; bi * B < cells_i; ++bi) {
+        b[src.axis_i] = bi;
+        if (!cv.blockOccupied(b[0], b[1], b[2])) continue;
+        const int begin = bi * B, end = std::min(begin + B, cells_i);
+        if (!active.ranges.empty() && active.offsets.back() < static_cast<int>(active.ranges.size()) &&
+            active.ranges.back().end == begin)
+          active.ranges.back().end = end;
+        else
+          active.ranges.push_back({begin, end});
+      }
+    }
+    active.offsets.push_back(static_cast<std::int32_t>(active.ranges.size()));
+  }
+}
+
 void encodeSlice(const SliceSource& src, const SliceGroup& values, const SliceGroup& field, int k,
                  EncoderScratch& scratch, SliceEncoding& s) {
   const ClassifiedVolume& cv = src.cv;
+  constexpr int B = ClassifiedVolume::kBlock;
   const int n_i = src.layout.n_i, n_j = src.layout.n_j;
   s.run_offsets.assign(n_j, 0);
   s.rows.assign(n_j, RowSpan{});
   if (!src.visibility.any) return;
-  // Keys: every voxel's bin coordinate, or its label's visibility.
+  ActiveCells& active = scratch.active;
+  findActiveCells(src, k, active);
+  if (active.ranges.empty()) return;
+  // Keys, every voxel's bin coordinate or its label's visibility, where the active cells of
+  // the cell rows either side of the voxel row reach: from the first active cell to the last
+  // one's right voxel, so that every record the runs below store has its key.
   scratch.keys.resize(static_cast<std::size_t>(n_i) * n_j);
   const SliceRows rows = values.slice(k);
   for (int j = 0; j < n_j; ++j) {
+    int lo = n_i, hi = -1;
+    for (int cj = std::max(j - 1, 0); cj <= std::min(j, n_j - 2); ++cj) {
+      const auto ranges = active.of(cj / B);
+      if (ranges.empty()) continue;
+      lo = std::min(lo, ranges.front().begin);
+      hi = std::max(hi, ranges.back().end);  // the last cell's right voxel
+    }
     const float* v = rows.row(j);
     float* key = scratch.keys.data() + static_cast<std::size_t>(j) * n_i;
     if (cv.labels) {
-      for (int i = 0; i < n_i; ++i) key[i] = cv.alpha[static_cast<int>(v[i])] > 0.f ? 1.f : 0.f;
+      for (int i = lo; i <= hi; ++i) key[i] = cv.alpha[static_cast<int>(v[i])] > 0.f ? 1.f : 0.f;
     } else {
-      for (int i = 0; i < n_i; ++i) key[i] = binCoordinate(cv, v[i]);
+      for (int i = lo; i <= hi; ++i) key[i] = binCoordinate(cv, v[i]);
     }
   }
   scratch.occupied.resize(n_i);
   for (int j = 0; j + 1 < n_j; ++j) {
     s.run_offsets[j] = static_cast<std::int32_t>(s.runs.size());
     const float* a = scratch.keys.data() + static_cast<std::size_t>(j) * n_i;
-    src.visibility.cells(a, a + n_i, n_i, scratch.occupied.data());
-    appendRuns(scratch.occupied.data(), n_i - 1, s.runs);
+    for (const ActiveCells::Range& r : active.of(j / B)) {
+      src.visibility.cells(a, a + n_i, r.begin, r.end, scratch.occupied.data());
+      appendRuns(scratch.occupied.data(), r.begin, r.end, s.runs);
+    }
   }
   s.run_offsets[n_j - 1] = static_cast<std::int32_t>(s.runs.size());
   // Voxel row j is touched by the cells of cell rows j − 1 and j.
