@@ -188,6 +188,44 @@ TEST(ShearWarp, RunLengthEncodingRoundTripsScalarVolumes) {
   EXPECT_LT(rle.encoding(2).storedVoxels(), 24u * 20 * 16);
 }
 
+// A radial field in a volume long along x, so that x's slices span three of the encoder's
+// 64-slice groups (each gathers its neighbours' slices for the gradient), under a transfer
+// function with a transparent gap between two visible value ranges (the cell test's
+// non-contiguous path), with most of the box empty (the occupied-block skipping).
+TEST(ShearWarp, RunLengthEncodingRoundTripsAcrossSliceGroupsAndOpacityGaps) {
+  const nlohmann::json j = {
+      {"volume", {{"procedural", "slab"}, {"size", 8}, {"thickness", 0.25}}},
+      {"materials", {{"shell", {{"reflectance", "ColorChecker/white 9.5 (.05 D)"}, {"opacity", 0.5}}}}},
+      {"transfer_function",
+       {{"points", {{0, "shell"}}},
+        {"opacity", {{0, 0}, {0.15, 0}, {0.2, 1}, {0.35, 1}, {0.4, 0}, {0.6, 0}, {0.65, 1}, {1, 1}}}}},
+      {"lights", {"D65"}},
+      {"camera", {{"azimuth", 0}, {"elevation", 0}, {"zoom", 1}}},
+      {"image", {{"width", 32}, {"height", 32}}},
+      {"render", {{"step", 0.5}, {"bins", 256}}},
+  };
+  Scene scene = parseScene(j, test::rendererDataDir() + "/scenes/gap.json", test::rendererLibrary());
+  const Dims dims{150, 24, 20};
+  std::vector<float> values(static_cast<std::size_t>(dims[0]) * dims[1] * dims[2]);
+  for (int z = 0; z < dims[2]; ++z)
+    for (int y = 0; y < dims[1]; ++y)
+      for (int x = 0; x < dims[0]; ++x) {
+        const double dx = (x - 74.5) / 60, dy = (y - 11.5) / 10, dz = (z - 9.5) / 8;
+        values[(static_cast<std::size_t>(z) * dims[1] + y) * dims[0] + x] =
+            static_cast<float>(std::max(0.0, 1.0 - std::sqrt(dx * dx + dy * dy + dz * dz)));
+      }
+  scene.volume = Volume::fromValues(dims, glm::dvec3(1.0), values, "radial field");
+  const auto model = makeSpectralModel(test::rendererObserver(), 3);
+  const ClassifiedVolume cv = classifyScene(scene, *model);
+  const std::vector<int> prefix = shearwarp::nonzeroOpacityPrefix(cv);
+  int first = -1, last = -1;
+  for (int e = 0; e < cv.entries; ++e)
+    if (cv.alpha[e] > 0.f) last = e, first = first < 0 ? e : first;
+  ASSERT_GE(first, 0);
+  ASSERT_LT(prefix[last + 1] - prefix[first], last - first + 1) << "the visible entries have a gap";
+  expectRoundTrip(cv);
+}
+
 ImageDifference relitDifference(const LightIndependentImage& a, const LightIndependentImage& b,
                                 const ColourModel& model, const std::string& light) {
   const Spectrum unit = test::rendererObserver().unitLuminance(test::rendererLibrary().get(light));
