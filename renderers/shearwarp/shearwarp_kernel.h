@@ -41,6 +41,7 @@ namespace svr::shearwarp::SVR_SHEARWARP_ISA {
 #define SVR_SHEARWARP_INLINE [[gnu::always_inline]] inline
 
 SVR_SHEARWARP_INLINE int nextLive(int* links, int u) {
+  if (links[u] == u) return u;  // live: most pixels, most of the time
   int root = u;
   while (links[root] != root) root = links[root];
   while (links[u] != root) {
@@ -190,13 +191,16 @@ SVR_SHEARWARP_INLINE void compositeSlice(const CompositeJob& job, int v, int sli
       // past the batch's end shade a zero gradient and are not used).
       alignas(16) float bins[kMax], gx[kMax], gy[kMax], gz[kMax], shade[kMax], highlight[kMax];
       const int padded = (b.count + 3) / 4 * 4;
+      // Bilinear as three lerps (along i in both rows, then along j): no corner weights.
+      static_assert(sizeof(VoxelRecord) == sizeof(Float4));
+      const Float4 fj4 = splat4(fj);
       for (int p = 0; p < b.count; ++p) {
-        const VoxelRecord* c[4];
-        float w[4];
-        corners(p, c, w);
-        static_assert(sizeof(VoxelRecord) == sizeof(Float4));
-        const Float4 r = w[0] * load4(&c[0]->bin) + w[1] * load4(&c[1]->bin) +
-                         w[2] * load4(&c[2]->bin) + w[3] * load4(&c[3]->bin);
+        const int i0 = b.i0[p];
+        const Float4 fi4 = splat4(b.fi[p]);
+        const Float4 a0 = load4(&rec0[i0].bin), a1 = load4(&rec0[i0 + 1].bin);
+        const Float4 b0 = load4(&rec1[i0].bin), b1 = load4(&rec1[i0 + 1].bin);
+        const Float4 top = a0 + fi4 * (a1 - a0), bottom = b0 + fi4 * (b1 - b0);
+        const Float4 r = top + fj4 * (bottom - top);
         bins[p] = r[0], gx[p] = r[1], gy[p] = r[2], gz[p] = r[3];
       }
       for (int p = b.count; p < padded; ++p) gx[p] = gy[p] = gz[p] = 0.f;
