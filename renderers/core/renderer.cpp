@@ -3,10 +3,30 @@
 #include <fmt/format.h>
 
 #include <cmath>
+#include <cstdint>
+#include <cstring>
+#include <span>
 
 #include "spectral/error.h"
 
 namespace svr {
+namespace {
+
+// Whether no value is NaN or ±Inf (exponent bits all set), without a branch a value: the
+// compiler vectorises this, where std::isfinite with an early exit took about nine
+// instructions a value, a few per cent of a shear-warp frame. The rare failure is then looked
+// for value by value.
+bool allFinite(std::span<const float> values) {
+  std::uint32_t any = 0;
+  for (float v : values) {
+    std::uint32_t bits;
+    std::memcpy(&bits, &v, sizeof bits);
+    any |= static_cast<std::uint32_t>((bits & 0x7f800000u) == 0x7f800000u);
+  }
+  return any == 0;
+}
+
+}  // namespace
 
 std::optional<std::string> unsupportedBy(const BackendInfo& backend, const Camera& camera, int k,
                                          int t_channels) {
@@ -45,6 +65,7 @@ LightIndependentImage Renderer::render(const RenderRequest& request,
   // Numeric failure is reported, never written out.
   for (int p = 0; p < image.planes(); ++p) {
     const auto plane = image.planeFloat(p);
+    if (allFinite(plane)) continue;
     for (std::size_t i = 0; i < plane.size(); ++i)
       if (!std::isfinite(plane[i]))
         throw Error(fmt::format("{}: non-finite value {} in {} channel {} at pixel ({}, {})",
