@@ -61,11 +61,13 @@ void warpToFinal(const IntermediateImage& im, const ShearWarpFactorization& f,
   // the last channel read the next pixel or the slack and are not stored.
   const auto blend = [&](std::size_t at, const float* p00, const float* p10, const float* p01,
                          const float* p11, float fu, float fv) {
-    const float w00 = (1 - fu) * (1 - fv), w10 = fu * (1 - fv), w01 = (1 - fu) * fv,
-                w11 = fu * fv;
+    const Float4 fu4 = splat4(fu), fv4 = splat4(fv);
     for (int c = 0; c < channels; c += 4) {
-      const Float4 sum = w00 * load4(p00 + c) + w10 * load4(p10 + c) + w01 * load4(p01 + c) +
-                         w11 * load4(p11 + c);
+      // Bilinear as three lerps: along u in both rows, then along v.
+      const Float4 a0 = load4(p00 + c), a1 = load4(p10 + c);
+      const Float4 b0 = load4(p01 + c), b1 = load4(p11 + c);
+      const Float4 top = a0 + fu4 * (a1 - a0), bottom = b0 + fu4 * (b1 - b0);
+      const Float4 sum = top + fv4 * (bottom - top);
       for (int lane = 0; lane < std::min(4, channels - c); ++lane)
         planes[(c + lane) * pixels + at] = sum[lane];
     }
