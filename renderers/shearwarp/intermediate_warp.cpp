@@ -7,13 +7,20 @@
 
 namespace svr::shearwarp {
 
-IntermediateImage::IntermediateImage(int w, int h, int s, int t) { reset(w, h, s, t); }
+IntermediateImage::IntermediateImage(int w, int h, int s, int t) {
+  resize(w, h, s, t);
+  clearRows(0, h);
+}
 
-void IntermediateImage::reset(int w, int h, int s, int t) {
+void IntermediateImage::resize(int w, int h, int s, int t) {
   width = w, height = h, s_channels = s, t_channels = t;
   data.resize(static_cast<std::size_t>(w) * h * (s + t) + kSlack);
-  float* d = data.data();
-  for (std::size_t p = 0; p < static_cast<std::size_t>(w) * h; ++p, d += s + t) {
+}
+
+void IntermediateImage::clearRows(int v0, int v1) {
+  const int s = s_channels, t = t_channels;
+  float* d = pixel(0, v0);
+  for (std::size_t p = 0; p < static_cast<std::size_t>(v1 - v0) * width; ++p, d += s + t) {
     std::fill_n(d, s, 0.f);
     std::fill_n(d + s, t, 1.f);
   }

@@ -11,10 +11,16 @@
 namespace svr::shearwarp {
 
 struct IntermediateImage {
+  IntermediateImage() = default;
+  // An empty image (S = 0, T = 1).
   IntermediateImage(int width, int height, int s_channels, int t_channels);
-  // Empty again at this size, reusing the storage (no fresh pages to fault in and zero).
-  void reset(int width, int height, int s_channels, int t_channels);
-  int width, height, s_channels, t_channels;
+  // This size, reusing the storage (no fresh pages to fault in and zero); the pixels are
+  // unspecified until clearRows. A render clears each band's rows just before compositing
+  // them, on the thread that composites them, instead of the whole image on one thread first.
+  void resize(int width, int height, int s_channels, int t_channels);
+  // Rows [v0, v1) empty again.
+  void clearRows(int v0, int v1);
+  int width = 0, height = 0, s_channels = 0, t_channels = 0;
   int channels() const { return s_channels + t_channels; }
   float* pixel(int u, int v) {
     return data.data() + (static_cast<std::size_t>(v) * width + u) * channels();

@@ -155,11 +155,8 @@ LightIndependentImage ShearWarpRenderer::renderImpl(const RenderRequest& req,
       pool_.pop_back();
     }
   }
-  if (pooled)
-    pooled->reset(view.width, view.height, cv.k, cv.t_channels);
-  else
-    pooled = std::make_unique<shearwarp::IntermediateImage>(view.width, view.height, cv.k,
-                                                            cv.t_channels);
+  if (!pooled) pooled = std::make_unique<shearwarp::IntermediateImage>();
+  pooled->resize(view.width, view.height, cv.k, cv.t_channels);  // each band clears its rows
   shearwarp::IntermediateImage& intermediate = *pooled;
   shearwarp::CompositeJob job{&cv,
                               &encoding,
@@ -196,7 +193,9 @@ LightIndependentImage ShearWarpRenderer::renderImpl(const RenderRequest& req,
     std::vector<int> links;
 #pragma omp for schedule(dynamic)
     for (int b = 0; b < bands; ++b) {
-      fn(job, b * kBand, std::min((b + 1) * kBand, view.height), links);
+      const int v0 = b * kBand, v1 = std::min((b + 1) * kBand, view.height);
+      intermediate.clearRows(v0, v1);
+      fn(job, v0, v1, links);
       progress.advance();
     }
   }
