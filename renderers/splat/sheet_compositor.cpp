@@ -7,6 +7,7 @@
 #include <cmath>
 
 #include "renderers/core/fast_exp.h"
+#include "renderers/core/float4.h"
 #include "renderers/splat/band_state.h"
 
 namespace svr::splat {
@@ -24,6 +25,10 @@ struct ActiveSplat {
   std::size_t chords = 0;   // offset of the rows' [lo, hi] pairs in the chord pool
   std::size_t weights = 0;  // offset of the chords' lengths, row after row, in the pool
   std::size_t coefs = 0;    // offset of its payload (SheetContent::payload) in the pool
+  // The kernel's share below the far side of the last sheet it reached (sheet `below_sheet`),
+  // which is its share below the near side of the next one.
+  long below_sheet = -2;
+  float below_far = 0.f;
 };
 
 // Composite one sheet pixel like one raycast sample: α = 1 − exp(−τ), colour = E / τ, from the
@@ -69,11 +74,12 @@ class SheetContent {
         tau_t_(kt_),
         e_(k_) {}
   int stride() const { return post_ ? 4 : 1 + kt_ + k_; }
-  // Appends what a splat contributes per unit length: post, its bin, shade and highlight; pre,
-  // sigma_alpha, kt sigma_t and k colours.
+  // Appends what a splat contributes per unit length: post, 1 (for L), its bin, shade and
+  // highlight, so that a pixel takes it as one four-lane multiply-add; pre, sigma_alpha, kt
+  // sigma_t and k colours.
   void payload(const Splat& s, std::vector<float>& pool) {
     if (post_) {
-      pool.insert(pool.end(), {static_cast<float>(s.entry) + s.frac, s.shade, s.highlight});
+      pool.insert(pool.end(), {1.f, static_cast<float>(s.entry) + s.frac, s.shade, s.highlight});
       return;
     }
     SplatCoefficients coef{0.f, sigma_t_, colour_};
@@ -85,8 +91,7 @@ class SheetContent {
   // A splat's kernel over `length` world units of the sheet at pixel b.
   void add(const float* payload, float length, float* b) const {
     if (post_) {
-      b[0] += length;
-      for (int c = 0; c < 3; ++c) b[1 + c] += length * payload[c];
+      store4(b, load4(b) + length * load4(payload));
       return;
     }
     const float scatter = payload[0] * length;
@@ -166,7 +171,9 @@ void compositeBand(const SplatList& list, const FootprintTable& table,
       j = std::max(j, static_cast<long>(
                           std::floor((splats[ids[next]].depth - reach - first_sheet) / thickness)));
     }
-    const double z0 = first_sheet + j * thickness, z1 = z0 + thickness;
+    // Both sides by the same formula, so that a sheet's far side is the next one's near side
+    // to the bit (ActiveSplat::below_far).
+    const double z0 = first_sheet + j * thickness, z1 = first_sheet + (j + 1) * thickness;
     while (live < active.size() && active[live].depth + reach <= z0) ++live;
     if (live > active.size() / 2 && live < active.size()) {
       // Drop the retired half of the active list and its pool entries.
@@ -212,9 +219,12 @@ void compositeBand(const SplatList& list, const FootprintTable& table,
     }
     int rx0 = width, rx1 = -1, ry0 = y1, ry1 = y0 - 1;  // the sheet's dirty rectangle
     for (std::size_t i = live; i < active.size(); ++i) {
-      const ActiveSplat& a = active[i];
+      ActiveSplat& a = active[i];
       if (a.xa > a.xb || a.ya > a.yb) continue;
-      const float share = below((z1 - a.depth) / depth_sigma) - below((z0 - a.depth) / depth_sigma);
+      const float near = a.below_sheet == j - 1 ? a.below_far : below((z0 - a.depth) / depth_sigma);
+      a.below_far = below((z1 - a.depth) / depth_sigma);
+      a.below_sheet = j;
+      const float share = a.below_far - near;
       if (!(share > 0.f) || state.columnsDone(a.xa, a.xb)) continue;
       const float* payload = &pool[a.coefs];
       const float* w = &pool[a.weights];
