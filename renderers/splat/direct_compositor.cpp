@@ -47,8 +47,15 @@ void compositeBand(const SplatList& list, const FootprintTable& table,
         const std::size_t p = state.pixel(x, y);
         const float kept = fastExp(-coef.sigma_alpha * length);
         const float alpha = 1.f - kept;
-        for (int c = 0; c < k; ++c)
-          state.scattered(c)[p] += state.transmittance(kt > 1 ? c : 0)[p] * alpha * colour[c];
+        if (kt == 1) {
+          // One T for every channel: read once (S and T share the image's storage, so the
+          // compiler would reload it after each S store), with the loop's arithmetic below.
+          const float t_alpha = state.transmittance(0)[p] * alpha;
+          for (int c = 0; c < k; ++c) state.scattered(c)[p] += t_alpha * colour[c];
+        } else {
+          for (int c = 0; c < k; ++c)
+            state.scattered(c)[p] += state.transmittance(c)[p] * alpha * colour[c];
+        }
         if (!attenuates) continue;
         if (same) {
           state.transmittance(0)[p] *= kept;
