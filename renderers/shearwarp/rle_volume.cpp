@@ -62,7 +62,8 @@ class SliceGroup {
         const int width = std::min(kTile, layout.n_i - i0);
         // The next tile's lines, which the hardware does not see coming.
         for (int i = i0 + kTile; i < std::min(i0 + 2 * kTile, layout.n_i); ++i)
-          for (int n = 0; n < count; n += 16) __builtin_prefetch(from + i * layout.stride_i + n);
+          for (int n = 0; n < count; n += 16)
+            __builtin_prefetch(from + i * layout.stride_i + n * layout.stride_k);
         for (int n = 0; n < count; ++n)
           for (int i = i0; i < i0 + width; ++i)
             to[n * plane_ + i] = from[i * layout.stride_i + n * layout.stride_k];
@@ -115,7 +116,8 @@ struct Visibility {
     if (!any) return;
     if (first_visible > 0) above = static_cast<float>(first_visible - 1);
     if (last_visible < last) below = static_cast<float>(last_visible + 1);
-    contiguous = prefix[last_visible + 1] - prefix[first_visible] == last_visible - first_visible + 1;
+    contiguous =
+        prefix[last_visible + 1] - prefix[first_visible] == last_visible - first_visible + 1;
   }
 
   // occupied[i] for the cells from ≤ i < to between key rows a and b.
@@ -255,8 +257,9 @@ void findActiveCells(const SliceSource& src, int k, ActiveCells& active) {
         b[src.axis_i] = bi;
         if (!cv.blockOccupied(b[0], b[1], b[2])) continue;
         const int begin = bi * B, end = std::min(begin + B, cells_i);
-        if (!active.ranges.empty() && active.offsets.back() < static_cast<int>(active.ranges.size()) &&
-            active.ranges.back().end == begin)
+        const bool in_this_row =
+            active.offsets.back() < static_cast<std::int32_t>(active.ranges.size());
+        if (in_this_row && active.ranges.back().end == begin)
           active.ranges.back().end = end;
         else
           active.ranges.push_back({begin, end});
