@@ -18,13 +18,13 @@ void* BlockArena::allocateBytes(std::size_t bytes, std::size_t align) {
   if (next_ == nullptr || pad + bytes > left_) {
     // Whole huge pages, aligned to one, so that every page of the block can be a huge one.
     const std::size_t size =
-        (std::max(bytes, block_bytes_) + kHugePage - 1) / kHugePage * kHugePage;
+        (std::max(bytes, kBlockBytes) + kHugePage - 1) / kHugePage * kHugePage;
     auto* memory = static_cast<std::byte*>(std::aligned_alloc(kHugePage, size));
     if (!memory) throw std::bad_alloc();
 #if defined(MADV_HUGEPAGE)
     madvise(memory, size, MADV_HUGEPAGE);  // advice only: without huge pages it still works
 #endif
-    blocks_.push_back({std::unique_ptr<std::byte, Free>(memory), size});
+    blocks_.emplace_back(memory);
     next_ = memory, left_ = size;
     return allocateBytes(bytes, align);
   }
@@ -35,15 +35,9 @@ void* BlockArena::allocateBytes(std::size_t bytes, std::size_t align) {
 }
 
 void BlockArena::adopt(BlockArena&& other) {
-  for (Block& b : other.blocks_) blocks_.push_back(std::move(b));
+  for (auto& b : other.blocks_) blocks_.push_back(std::move(b));
   other.blocks_.clear();
   other.next_ = nullptr, other.left_ = 0;
-}
-
-std::size_t BlockArena::reservedBytes() const {
-  std::size_t n = 0;
-  for (const Block& b : blocks_) n += b.size;
-  return n;
 }
 
 }  // namespace svr

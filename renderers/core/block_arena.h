@@ -16,8 +16,7 @@ namespace svr {
 class BlockArena {
  public:
   static constexpr std::size_t kHugePage = std::size_t{2} << 20;
-
-  explicit BlockArena(std::size_t block_bytes = 2 * kHugePage) : block_bytes_(block_bytes) {}
+  static constexpr std::size_t kBlockBytes = 2 * kHugePage;  // larger requests get their own
 
   // Uninitialised room for n objects of a trivially destructible type; valid until the arena
   // (or the one that adopted it) is destroyed. Throws std::bad_alloc.
@@ -30,20 +29,13 @@ class BlockArena {
   // Takes over other's blocks (e.g. each thread's arena, once the threads are done).
   void adopt(BlockArena&& other);
 
-  std::size_t reservedBytes() const;
-
  private:
   void* allocateBytes(std::size_t bytes, std::size_t align);
 
   struct Free {
     void operator()(std::byte* p) const;
   };
-  struct Block {
-    std::unique_ptr<std::byte, Free> memory;
-    std::size_t size = 0;
-  };
-  std::size_t block_bytes_;
-  std::vector<Block> blocks_;
+  std::vector<std::unique_ptr<std::byte, Free>> blocks_;
   std::byte* next_ = nullptr;
   std::size_t left_ = 0;
 };

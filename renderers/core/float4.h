@@ -1,8 +1,8 @@
 #pragma once
 // Four floats as one vector (GCC's vector extension: SSE on the baseline target, AVX's encoding
 // inside the AVX2 kernels), for work done four lanes at a time with each lane's arithmetic the
-// same as the scalar code's: shear-warp's records (blended and encoded), table rows and warp taps, and phong4
-// (classified_sample.h). Loads and stores go through memcpy, one unaligned move each.
+// same as the scalar code's: shear-warp's records (blended and encoded), table rows and warp
+// taps, and phong4 (classified_sample.h). Loads and stores go through memcpy, one unaligned move each.
 
 #include <cmath>
 #include <cstdint>
@@ -41,7 +41,8 @@ typedef std::int32_t Int4 __attribute__((vector_size(16)));
 #endif
 }
 
-// Rows to columns: afterwards a holds the first lanes of a, b, c, d, b their second lanes, and so on.
+// Rows to columns: afterwards a holds the first lanes of a, b, c, d, b their second lanes, and
+// so on.
 [[gnu::always_inline]] inline void transpose4(Float4& a, Float4& b, Float4& c, Float4& d) {
   const Float4 ab_low = __builtin_shufflevector(a, b, 0, 4, 1, 5);
   const Float4 ab_high = __builtin_shufflevector(a, b, 2, 6, 3, 7);

@@ -386,7 +386,8 @@ AxisEncoding::AxisEncoding(const ClassifiedVolume& cv, int axis)
   const SliceLayout layout{n_i_, n_j_, n_k_, stride[axis_i_], stride[axis_j_], stride[axis_]};
   const Visibility visibility(cv);
   const SliceSource source{cv, layout, axis_, axis_i_, axis_j_, visibility};
-  // Gathered slices go in groups of 16 (a cache line of floats along the axis).
+  // Gathered slices go in groups of 64: a few cache lines of floats along the axis for each
+  // voxel of a slice, read once for the group.
   const int group = layout.stride_i == 1 ? 1 : 64;
   const int groups = (n_k_ + group - 1) / group;
   slices_.resize(n_k_);
