@@ -85,8 +85,7 @@ void markOccupiedBlocks(const Volume& volume, ClassifiedVolume& cv) {
   for (int a = 0; a < 3; ++a) cv.blocks[a] = (cv.dims[a] + B - 1) / B;
   cv.block_occupied.assign(
       static_cast<std::size_t>(cv.blocks[0]) * cv.blocks[1] * cv.blocks[2], 0);
-  std::vector<int> nonzero_prefix(cv.entries + 1, 0);
-  for (int e = 0; e < cv.entries; ++e) nonzero_prefix[e + 1] = nonzero_prefix[e] + (cv.alpha[e] > 0);
+  const std::vector<int> nonzero_prefix = nonzeroOpacityPrefix(cv);
   const bool parallel = static_cast<std::int64_t>(cv.values.size()) >= kParallelVoxels;
 #pragma omp parallel for collapse(2) schedule(dynamic) if (parallel)
   for (int bz = 0; bz < cv.blocks[2]; ++bz)
@@ -108,9 +107,8 @@ void markOccupiedBlocks(const Volume& volume, ClassifiedVolume& cv) {
         if (!cv.labels) {
           // In binCoordinate's arithmetic, as the samples' bins (monotone in the value, so
           // the block's range of bin coordinates is that of its extreme values).
-          const int b0 = std::clamp(static_cast<int>(std::floor(binCoordinate(cv, vmin))), 0, cv.entries - 1);
-          const int b1 = std::clamp(static_cast<int>(std::ceil(binCoordinate(cv, vmax))), 0, cv.entries - 1);
-          occupied = nonzero_prefix[b1 + 1] - nonzero_prefix[b0] > 0;
+          occupied = binRangeVisible(cv, nonzero_prefix, binCoordinate(cv, vmin),
+                                     binCoordinate(cv, vmax));
         }
         cv.block_occupied[(static_cast<std::size_t>(bz) * cv.blocks[1] + by) * cv.blocks[0] + bx] =
             occupied;

@@ -6,6 +6,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <span>
+#include <vector>
 #include <glm/vec3.hpp>
 
 #include "renderers/core/classification.h"
@@ -60,6 +62,25 @@ inline void entriesOfBin(const ClassifiedVolume& cv, float bin, int& e0, int& e1
   e0 = std::min(static_cast<int>(bin), std::max(cv.entries - 2, 0));
   e1 = std::min(e0 + 1, cv.entries - 1);
   frac = bin - e0;
+}
+
+// prefix[e]: how many entries below e have non-zero opacity (entries + 1 values), so that
+// whether a range of entries holds a visible one is one subtraction.
+inline std::vector<int> nonzeroOpacityPrefix(const ClassifiedVolume& cv) {
+  std::vector<int> prefix(cv.entries + 1, 0);
+  for (int e = 0; e < cv.entries; ++e) prefix[e + 1] = prefix[e] + (cv.alpha[e] > 0.f);
+  return prefix;
+}
+
+// Whether a sample whose bin coordinate lies in [lo, hi] can have non-zero opacity: its table
+// lookup blends the entries floor(lo) .. ceil(hi), clamped to the table (a bin hit exactly
+// takes its upper neighbour with weight 0). `prefix`: nonzeroOpacityPrefix(cv).
+inline bool binRangeVisible(const ClassifiedVolume& cv, std::span<const int> prefix, float lo,
+                            float hi) {
+  const int last = cv.entries - 1;
+  const int b0 = std::clamp(static_cast<int>(std::floor(lo)), 0, last);
+  const int b1 = std::clamp(static_cast<int>(std::ceil(hi)), 0, last);
+  return prefix[b1 + 1] - prefix[b0] > 0;
 }
 
 // The two classification entries a scalar value falls between, and the weight of the upper.

@@ -95,17 +95,17 @@ struct Visibility {
   bool any = false;
   float above = -INFINITY, below = INFINITY;  // visible: max > above and min < below
   bool contiguous = true;
+  const ClassifiedVolume* classified;
   std::vector<int> prefix;  // nonzeroOpacityPrefix, for the non-contiguous case
-  int last = 0;
 
-  explicit Visibility(const ClassifiedVolume& cv) {
+  explicit Visibility(const ClassifiedVolume& cv) : classified(&cv) {
     if (cv.labels) {
       any = std::any_of(cv.alpha.begin(), cv.alpha.end(), [](float a) { return a > 0.f; });
       above = 0.f;
       return;
     }
     prefix = nonzeroOpacityPrefix(cv);
-    last = cv.entries - 1;
+    const int last = cv.entries - 1;
     int first_visible = -1, last_visible = -1;
     for (int e = 0; e < cv.entries; ++e)
       if (cv.alpha[e] > 0.f) {
@@ -132,9 +132,7 @@ struct Visibility {
       if (!occupied[i]) continue;
       const float lo = std::min(std::min(a[i], a[i + 1]), std::min(b[i], b[i + 1]));
       const float hi = std::max(std::max(a[i], a[i + 1]), std::max(b[i], b[i + 1]));
-      const int b0 = std::clamp(static_cast<int>(std::floor(lo)), 0, last);
-      const int b1 = std::clamp(static_cast<int>(std::ceil(hi)), 0, last);
-      occupied[i] = prefix[b1 + 1] - prefix[b0] > 0;
+      occupied[i] = binRangeVisible(*classified, prefix, lo, hi);
     }
   }
 };
@@ -339,12 +337,6 @@ void encodeSlice(const SliceSource& src, const SliceGroup& values, const SliceGr
 
 }  // namespace
 
-std::vector<int> nonzeroOpacityPrefix(const ClassifiedVolume& cv) {
-  std::vector<int> prefix(cv.entries + 1, 0);
-  for (int e = 0; e < cv.entries; ++e) prefix[e + 1] = prefix[e] + (cv.alpha[e] > 0.f);
-  return prefix;
-}
-
 bool cellOccupied(const ClassifiedVolume& cv, std::span<const int> nonzero_prefix, int x, int y,
                   int z, int a, int b) {
   float bmin = INFINITY, bmax = -INFINITY;
@@ -361,12 +353,8 @@ bool cellOccupied(const ClassifiedVolume& cv, std::span<const int> nonzero_prefi
     }
   }
   if (cv.labels) return false;
-  // Every bilinear sample's bin coordinate lies in [bmin, bmax]; its table lookup blends bins
-  // floor..ceil (a bin hit exactly takes its upper neighbour with weight 0).
-  const int last = cv.entries - 1;
-  const int b0 = std::clamp(static_cast<int>(std::floor(bmin)), 0, last);
-  const int b1 = std::clamp(static_cast<int>(std::ceil(bmax)), 0, last);
-  return nonzero_prefix[b1 + 1] - nonzero_prefix[b0] > 0;
+  // Every bilinear sample's bin coordinate lies in [bmin, bmax].
+  return binRangeVisible(cv, nonzero_prefix, bmin, bmax);
 }
 
 AxisEncoding::AxisEncoding(const ClassifiedVolume& cv, int axis)

@@ -113,7 +113,5 @@ class RleVolume {
 // can check the runs against it cell by cell.
 bool cellOccupied(const ClassifiedVolume& cv, std::span<const int> nonzero_prefix, int x, int y,
                   int z, int a, int b);
-// nonzero_prefix[e] = number of entries below e with non-zero opacity (entries + 1 values).
-std::vector<int> nonzeroOpacityPrefix(const ClassifiedVolume& cv);
 
 }  // namespace svr::shearwarp

@@ -115,7 +115,7 @@ TEST(ShearWarp, SphereChordsMatchTheClosedForm) {
 // voxel such a cell touches is stored with its exact value and the raycaster's gradient.
 void expectRoundTrip(const ClassifiedVolume& cv) {
   const shearwarp::RleVolume rle(cv);
-  const std::vector<int> prefix = shearwarp::nonzeroOpacityPrefix(cv);
+  const std::vector<int> prefix = nonzeroOpacityPrefix(cv);
   std::size_t occupied_cells = 0;
   for (int axis = 0; axis < 3; ++axis) {
     const shearwarp::AxisEncoding& enc = rle.encoding(axis);
@@ -217,7 +217,7 @@ TEST(ShearWarp, RunLengthEncodingRoundTripsAcrossSliceGroupsAndOpacityGaps) {
   scene.volume = Volume::fromValues(dims, glm::dvec3(1.0), values, "radial field");
   const auto model = makeSpectralModel(test::rendererObserver(), 3);
   const ClassifiedVolume cv = classifyScene(scene, *model);
-  const std::vector<int> prefix = shearwarp::nonzeroOpacityPrefix(cv);
+  const std::vector<int> prefix = nonzeroOpacityPrefix(cv);
   int first = -1, last = -1;
   for (int e = 0; e < cv.entries; ++e)
     if (cv.alpha[e] > 0.f) last = e, first = first < 0 ? e : first;
