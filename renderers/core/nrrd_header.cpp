@@ -86,16 +86,19 @@ void preScan(const std::string& path, std::uint64_t budget) {
     ++line_number;
     checkHeaderWithinBudget(path, header_bytes, budget, "the empty line that ends it");
     checkHeaderLineIsText(path, line, line_number);
-    if (line.size() > kMaxFieldLine && line[0] != '#' && line.find(":=") == std::string::npos)
+    // A key:=value line has its ":=" before any ": ". teem reads "space: …:=…" as the field
+    // "space" and quotes it when it fails, so such a line is a field line here too.
+    const auto colon = line.find(": ");
+    const bool comment = !line.empty() && line[0] == '#';
+    const bool key_value = line.find(":=") < colon;
+    if (line.size() > kMaxFieldLine && !comment && !key_value)
       throw Error(fmt::format("{}: line {} is a field line of {} bytes; field lines (all but "
                               "comments and key:=value lines) may be at most {} bytes, since "
                               "teem's error messages overflow on longer ones",
                               path, line_number, line.size(), kMaxFieldLine));
     if (!line.empty() && line.back() == '\r') line.pop_back();
-    if (line.empty()) break;       // the end of an attached header
-    if (line[0] == '#') continue;  // comment
-    const auto colon = line.find(": ");
-    if (colon == std::string::npos || line.find(":=") < colon) continue;  // key:=value
+    if (line.empty()) break;                                   // the end of an attached header
+    if (comment || key_value || colon == std::string::npos) continue;
     const std::string key = toLower(trim(line.substr(0, colon)));
     const std::string value = trim(line.substr(colon + 2));
     if (key == "type") {
