@@ -2,29 +2,32 @@
 
 #include <algorithm>
 #include <cmath>
+#include <span>
 #include <utility>
 
 #include "renderers/core/classified_sample.h"
+#include "renderers/core/float4.h"
 #include "renderers/core/volume.h"
 
 namespace svr::shearwarp {
 
 // Octahedral mapping (Meyer et al. 2010): the unit sphere folded onto [−1, 1]², kNormalSide
-// steps a side.
+// steps a side, each coordinate rounded to the nearest step.
 std::uint16_t encodeNormal(const float g[3]) {
-  const float len1 = std::abs(g[0]) + std::abs(g[1]) + std::abs(g[2]);
-  const float len2 = std::sqrt(g[0] * g[0] + g[1] * g[1] + g[2] * g[2]);
-  if (!(len2 > 1e-6f)) return kFlatNormal;
-  float x = g[0] / len1, y = g[1] / len1;
+  if (!(g[0] * g[0] + g[1] * g[1] + g[2] * g[2] > 1e-12f)) return kFlatNormal;
+  const float inv_len1 = 1.f / (std::abs(g[0]) + std::abs(g[1]) + std::abs(g[2]));
+  float x = g[0] * inv_len1, y = g[1] * inv_len1;
   if (g[2] < 0.f) {
     const float fx = (1.f - std::abs(y)) * (x >= 0.f ? 1.f : -1.f);
     const float fy = (1.f - std::abs(x)) * (y >= 0.f ? 1.f : -1.f);
     x = fx, y = fy;
   }
-  constexpr float kTop = kNormalSide - 1;
-  const auto q = [&](float c) {
-    return static_cast<int>(std::clamp(std::lround((c * 0.5f + 0.5f) * kTop), 0l,
-                                       static_cast<long>(kTop)));
+  constexpr int kTop = kNormalSide - 1;
+  // c lies in [−1, 1], so the step plus a half is non-negative and truncation rounds it (half
+  // up; libm's lround was a third of the encoding's time). A NaN falls to step 0.
+  const auto q = [](float c) {
+    const float step = (c * 0.5f + 0.5f) * static_cast<float>(kTop) + 0.5f;
+    return step > 0.f ? std::min(static_cast<int>(step), kNormalSide - 1) : 0;
   };
   return static_cast<std::uint16_t>(q(y) * kNormalSide + q(x));
 }
@@ -43,52 +46,149 @@ void decodeNormal(std::uint16_t index, float n[3]) {
   n[0] = x / len, n[1] = y / len, n[2] = z / len;
 }
 
+// Four normals at a time, each lane taking encodeNormal's operations in its order (so the two
+// agree bit for bit), with selects for its branches.
+void encodeNormals(std::span<const VoxelRecord> voxels, std::uint16_t* normals) {
+  constexpr float kTop = kNormalSide - 1;
+  const Float4 one = splat4(1.f), half = splat4(0.5f), zero = splat4(0.f);
+  const auto sign = [&](Float4 c) { return c >= zero ? one : -one; };
+  const auto q = [&](Float4 c) {
+    Float4 step = (c * half + half) * splat4(kTop) + half;
+    step = step > zero ? step : zero;  // a NaN too
+    step = step < splat4(kTop) ? step : splat4(kTop);
+    return __builtin_convertvector(step, Int4);
+  };
+  std::size_t n = 0;
+  for (; n + 4 <= voxels.size(); n += 4) {
+    Float4 bins = load4(&voxels[n].bin), gx = load4(&voxels[n + 1].bin);
+    Float4 gy = load4(&voxels[n + 2].bin), gz = load4(&voxels[n + 3].bin);
+    transpose4(bins, gx, gy, gz);
+    const Int4 flat = !(gx * gx + gy * gy + gz * gz > splat4(1e-12f));
+    const Float4 inv_len1 = one / (abs4(gx) + abs4(gy) + abs4(gz));
+    Float4 x = gx * inv_len1, y = gy * inv_len1;
+    const Int4 below = gz < zero;
+    const Float4 fx = (one - abs4(y)) * sign(x), fy = (one - abs4(x)) * sign(y);
+    x = below ? fx : x, y = below ? fy : y;
+    const Int4 index = flat ? Int4{kFlatNormal, kFlatNormal, kFlatNormal, kFlatNormal}
+                            : q(y) * kNormalSide + q(x);
+    for (int m = 0; m < 4; ++m) normals[n + m] = static_cast<std::uint16_t>(index[m]);
+  }
+  for (; n < voxels.size(); ++n) normals[n] = encodeNormal(voxels[n].gradient);
+}
+
+namespace {
+
+// Every table entry's classified record, [α, α·specular, α·ρ_0 …, t_0 …] padded with zeros to
+// the stride: a voxel's record is its bin's two entries blended (classification is linear in
+// the entries' weights), two vector lerps a voxel for rgb instead of 2 × (2 + k + kt) products.
+std::vector<float> entryRecords(const ClassifiedVolume& cv, int stride) {
+  const int k = cv.k, kt = cv.t_channels;
+  std::vector<float> table(static_cast<std::size_t>(cv.entries) * stride, 0.f);
+  for (int e = 0; e < cv.entries; ++e) {
+    float* r = &table[static_cast<std::size_t>(e) * stride];
+    const float a = cv.alpha[e];
+    r[0] = a;
+    r[1] = a * cv.specular[e];
+    for (int c = 0; c < k; ++c) r[2 + c] = a * cv.reflectance[static_cast<std::size_t>(e) * k + c];
+    for (int c = 0; c < kt; ++c)
+      r[2 + k + c] = cv.transmission[static_cast<std::size_t>(e) * kt + c];
+  }
+  return table;
+}
+
+// Each voxel's record: its bin's two entries' rows of `table` blended (entriesOfBin, four
+// voxels' at a time). V: vectors a record (stride / 4), fixed at compile time for the common
+// strides so the blend unrolls; 0 for any.
+template <int V>
+void classifyRecords(const ClassifiedVolume& cv, const float* table, int stride,
+                     std::span<const VoxelRecord> voxels, float* records) {
+  const int vectors = V > 0 ? V : stride / 4;
+  const auto blend = [&](std::size_t n, int e0, int e1, float w) {
+    const float* a = table + static_cast<std::size_t>(e0) * stride;
+    const float* b = table + static_cast<std::size_t>(e1) * stride;
+    float* r = records + n * stride;
+    for (int q = 0; q < vectors; ++q) {
+      const Float4 lo = load4(a + 4 * q);
+      store4(r + 4 * q, lo + (load4(b + 4 * q) - lo) * splat4(w));
+    }
+  };
+  const Float4 last = splat4(static_cast<float>(cv.entries - 1));
+  const int l = cv.entries - 1, t = std::max(cv.entries - 2, 0);
+  const Int4 last_entry{l, l, l, l}, top{t, t, t, t};
+  std::size_t n = 0;
+  for (; n + 4 <= voxels.size(); n += 4) {
+    const Float4 bins{voxels[n].bin, voxels[n + 1].bin, voxels[n + 2].bin, voxels[n + 3].bin};
+    Int4 e0, e1;
+    Float4 w = splat4(0.f);
+    if (cv.labels) {
+      e0 = e1 = __builtin_convertvector(bins, Int4);  // the label's own entry
+    } else {
+      Float4 b = bins < splat4(0.f) ? splat4(0.f) : bins;
+      b = last < b ? last : b;
+      e0 = __builtin_convertvector(b, Int4);
+      e0 = e0 < top ? e0 : top;
+      e1 = e0 + 1 < last_entry ? e0 + 1 : last_entry;
+      w = b - __builtin_convertvector(e0, Float4);
+    }
+    for (int m = 0; m < 4; ++m) blend(n + m, e0[m], e1[m], w[m]);
+  }
+  for (; n < voxels.size(); ++n) {
+    int e0 = 0, e1 = 0;
+    float w = 0.f;
+    if (cv.labels)
+      e0 = e1 = static_cast<int>(voxels[n].bin);
+    else
+      entriesOfBin(cv, voxels[n].bin, e0, e1, w);
+    blend(n, e0, e1, w);
+  }
+}
+
+// One slice: each voxel's quantised normal and its classified record.
+void classifySlice(const ClassifiedVolume& cv, const float* table, int stride,
+                   std::span<const VoxelRecord> voxels, float* records, std::uint16_t* normals) {
+  encodeNormals(voxels, normals);
+  switch (stride / 4) {
+    case 2:  // 2 + k + kt ≤ 8: rgb, factor:3 and factor:4 with one t
+      return classifyRecords<2>(cv, table, stride, voxels, records);
+    case 3:
+      return classifyRecords<3>(cv, table, stride, voxels, records);
+    case 4:
+      return classifyRecords<4>(cv, table, stride, voxels, records);
+    default:
+      return classifyRecords<0>(cv, table, stride, voxels, records);
+  }
+}
+
+}  // namespace
+
 PreclassifiedAxis::PreclassifiedAxis(const ClassifiedVolume& cv,
                                      std::shared_ptr<const RleVolume> encoded, int axis)
     : encoded_(std::move(encoded)),
       encoding_(&encoded_->encoding(axis)),
       stride_((2 + cv.k + cv.t_channels + 3) / 4 * 4) {
   const AxisEncoding& encoding = *encoding_;
-  const int k = cv.k, kt = cv.t_channels, n_k = encoding.slices(), n_j = encoding.rowCount();
+  const int n_k = encoding.slices();
+  const std::vector<float> table = entryRecords(cv, stride_);
   records_.resize(n_k);
   normals_.resize(n_k);
-  // Classifying and encoding a voxel costs some 30 times what the loops kParallelVoxels was
-  // chosen for do per voxel: in parallel from an eighth of it (the engine stores about 3 M).
+  // Classifying a voxel costs some 10 times what the loops kParallelVoxels was chosen for do
+  // per voxel: in parallel from a tenth of it (the engine stores about 3 M).
   const bool parallel =
-      encoding.storedVoxels() >= static_cast<std::size_t>(kParallelVoxels) / 8;
-#pragma omp parallel for schedule(dynamic) if (parallel)
-  for (int s = 0; s < n_k; ++s) {
-    std::size_t count = 0;
-    for (int j = 0; j < n_j; ++j) count += encoding.row(s, j).count;
-    records_[s].assign(count * stride_, 0.f);
-    normals_[s].resize(count);
-    for (int j = 0; j < n_j; ++j) {
-      const RowSpan& row = encoding.row(s, j);
-      const VoxelRecord* voxels = encoding.rowRecords(s, j);
-      for (int i = row.lo; i < row.lo + row.count; ++i) {
-        const std::size_t at = row.offset + (i - row.lo);
-        float* r = &records_[s][at * stride_];
-        normals_[s][at] = encodeNormal(voxels[i].gradient);
-        // The voxel's own classification: its label's entry, or its value's two bins.
-        int e[2] = {0, 0};
-        float w[2] = {1.f, 0.f};
-        if (cv.labels) {
-          e[0] = e[1] = static_cast<int>(voxels[i].bin);
-        } else {
-          entriesOfBin(cv, voxels[i].bin, e[0], e[1], w[1]);
-          w[0] = 1.f - w[1];
-        }
-        for (int n = 0; n < 2; ++n) {
-          const float a = w[n] * cv.alpha[e[n]];
-          r[0] += a;
-          r[1] += a * cv.specular[e[n]];
-          for (int c = 0; c < k; ++c)
-            r[2 + c] += a * cv.reflectance[static_cast<std::size_t>(e[n]) * k + c];
-          for (int c = 0; c < kt; ++c)
-            r[2 + k + c] += w[n] * cv.transmission[static_cast<std::size_t>(e[n]) * kt + c];
-        }
-      }
+      encoding.storedVoxels() >= static_cast<std::size_t>(kParallelVoxels) / 10;
+#pragma omp parallel if (parallel)
+  {
+    BlockArena arena;  // this thread's slices, adopted below
+#pragma omp for schedule(dynamic)
+    for (int s = 0; s < n_k; ++s) {
+      const std::span<const VoxelRecord> voxels = encoding.sliceRecords(s);
+      float* records = arena.allocate<float>(voxels.size() * stride_);
+      std::uint16_t* normals = arena.allocate<std::uint16_t>(voxels.size());
+      classifySlice(cv, table.data(), stride_, voxels, records, normals);
+      records_[s] = records;
+      normals_[s] = normals;
     }
+#pragma omp critical(svr_shearwarp_preclassified)
+    arena_.adopt(std::move(arena));
   }
 }
 
@@ -104,10 +204,8 @@ std::shared_ptr<const PreclassifiedAxis> PreclassifiedAxis::of(const ClassifiedV
 }
 
 std::size_t PreclassifiedAxis::bytes() const {
-  std::size_t n = 0;
-  for (std::size_t s = 0; s < records_.size(); ++s)
-    n += records_[s].size() * sizeof(float) + normals_[s].size() * sizeof(std::uint16_t);
-  return n;
+  const std::size_t voxels = encoding_->storedVoxels();
+  return voxels * (stride_ * sizeof(float) + sizeof(std::uint16_t));
 }
 
 ShadingTable::ShadingTable(const PhongSetup& phong) : terms(2 * (kFlatNormal + 1)) {

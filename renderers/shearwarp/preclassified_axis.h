@@ -17,8 +17,10 @@
 #include <cmath>
 #include <cstdint>
 #include <memory>
+#include <span>
 #include <vector>
 
+#include "renderers/core/block_arena.h"
 #include "renderers/core/classification.h"
 #include "renderers/core/classified_sample.h"
 #include "renderers/shearwarp/rle_volume.h"
@@ -34,6 +36,8 @@ inline constexpr int kNormalSide = 128;
 inline constexpr std::uint16_t kFlatNormal = kNormalSide * kNormalSide;
 std::uint16_t encodeNormal(const float g[3]);
 void decodeNormal(std::uint16_t index, float n[3]);
+// encodeNormal of each record's gradient, four at a time.
+void encodeNormals(std::span<const VoxelRecord> voxels, std::uint16_t* normals);
 
 class PreclassifiedAxis {
  public:
@@ -46,12 +50,12 @@ class PreclassifiedAxis {
   int stride() const { return stride_; }  // floats per record (2 + k + kt, padded to 4)
   // Row j of slice k indexed by voxel i, as AxisEncoding::rowRecords.
   const float* rowRecords(int k, int j) const {
-    return records_[k].data() +
+    return records_[k] +
            (static_cast<std::ptrdiff_t>(encoding_->row(k, j).offset) - encoding_->row(k, j).lo) *
                stride_;
   }
   const std::uint16_t* rowNormals(int k, int j) const {
-    return normals_[k].data() + static_cast<std::ptrdiff_t>(encoding_->row(k, j).offset) -
+    return normals_[k] + static_cast<std::ptrdiff_t>(encoding_->row(k, j).offset) -
            encoding_->row(k, j).lo;
   }
   std::size_t bytes() const;
@@ -60,8 +64,10 @@ class PreclassifiedAxis {
   std::shared_ptr<const RleVolume> encoded_;
   const AxisEncoding* encoding_;
   int stride_;
-  std::vector<std::vector<float>> records_;        // per slice
-  std::vector<std::vector<std::uint16_t>> normals_;  // per slice
+  // Per slice, in the order of the axis encoding's records, in arena_.
+  std::vector<const float*> records_;
+  std::vector<const std::uint16_t*> normals_;
+  BlockArena arena_;
 };
 
 // Per view: shade and highlight (phong()'s terms) of every normal index, interleaved.

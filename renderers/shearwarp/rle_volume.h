@@ -80,6 +80,10 @@ class AxisEncoding {
     const RowSpan& r = s.rows[j];
     return s.records + static_cast<std::ptrdiff_t>(r.offset) - r.lo;
   }
+  // Slice k's records, row after row (row j's from rows[j].offset).
+  std::span<const VoxelRecord> sliceRecords(int k) const {
+    return {slices_[k].records, slices_[k].record_count};
+  }
   std::size_t bytes() const;
   std::size_t storedVoxels() const;
 

@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <vector>
 
 #include "renderers/core/classification.h"
 #include "renderers/core/classified_sample.h"
@@ -68,6 +69,37 @@ TEST(ShearWarp, QuantisedNormalsRoundTrip) {
   EXPECT_LT(worst, 2.0);
   const float zero[3] = {0.f, 0.f, 0.f};
   EXPECT_EQ(shearwarp::encodeNormal(zero), shearwarp::kFlatNormal);
+}
+
+// The pre-classified builder encodes four normals at a time: every lane equals encodeNormal,
+// over the sphere, the axes and octant diagonals (the fold's edges and rounding ties), a
+// vanishing gradient, one below the flat threshold and a NaN, in runs of 4n + 3 (the tail).
+TEST(ShearWarp, NormalsEncodedFourAtATimeEqualOneAtATime) {
+  std::vector<shearwarp::VoxelRecord> voxels;
+  const auto add = [&](float x, float y, float z) { voxels.push_back({0.f, {x, y, z}}); };
+  for (int i = 0; i < 997; ++i) {
+    const double z = -1.0 + 2.0 * ((i * 0.618034) - std::floor(i * 0.618034));
+    const double phi = 2.399963 * i;
+    const double r = 0.01 + 40.0 * (i % 7);
+    add(static_cast<float>(r * std::sqrt(1 - z * z) * std::cos(phi)),
+        static_cast<float>(r * std::sqrt(1 - z * z) * std::sin(phi)), static_cast<float>(r * z));
+  }
+  for (const float a : {-1.f, 0.f, 1.f})
+    for (const float b : {-1.f, 0.f, 1.f})
+      for (const float c : {-1.f, -0.f, 0.f, 1.f}) add(a, b, c);
+  add(0.f, 0.f, 0.f);
+  add(1e-7f, 0.f, 0.f);
+  add(std::nanf(""), 1.f, 0.f);
+  const std::size_t whole = voxels.size() - voxels.size() % 4;
+  voxels.resize(whole + 3, {0.f, {0.5f, -0.25f, -0.25f}});
+  std::vector<std::uint16_t> four(voxels.size());
+  shearwarp::encodeNormals(voxels, four.data());
+  int flat = 0;
+  for (std::size_t n = 0; n < voxels.size(); ++n) {
+    ASSERT_EQ(four[n], shearwarp::encodeNormal(voxels[n].gradient)) << "voxel " << n;
+    flat += four[n] == shearwarp::kFlatNormal;
+  }
+  EXPECT_EQ(flat, 5);  // (0, 0, ±0) among the axes, then 0, 1e-7 and the NaN
 }
 
 TEST(ShearWarp, SpectralSlabTransmittancePerChannel) {
