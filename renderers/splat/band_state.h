@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cstdint>
+#include <limits>
 #include <vector>
 
 #include "spectral/light_independent_image.h"
@@ -39,9 +40,13 @@ class BandState {
   int y0() const { return y0_; }
   int y1() const { return y1_; }
   std::size_t pixel(int x, int y) const { return static_cast<std::size_t>(y) * width_ + x; }
+  std::size_t planePixels() const { return pixels_; }  // the image's: planes lie this far apart
   float* scattered(int c) { return out_ + c * pixels_; }
   float* transmittance(int c) { return out_ + (k_ + c) * pixels_; }
   bool done(int x, int y) const { return done_[static_cast<std::size_t>(y - y0_) * width_ + x]; }
+  const std::uint8_t* doneRow(int y) const {  // done(x, y) is doneRow(y)[x] != 0
+    return done_.data() + static_cast<std::size_t>(y - y0_) * width_;
+  }
   bool allDone() const { return live_ == 0; }
   // True when every pixel in columns [x0, x1] of this band is finished.
   bool columnsDone(int x0, int x1) const {
@@ -55,11 +60,18 @@ class BandState {
     const std::size_t p = pixel(x, y);
     float tmax = 0.f;
     for (int c = 0; c < kt_; ++c) tmax = std::max(tmax, out_[(k_ + c) * pixels_ + p]);
-    if (tmax < termination_) {
-      done_[static_cast<std::size_t>(y - y0_) * width_ + x] = 1;
-      --live_per_block_[x / kBlock];
-      --live_;
-    }
+    if (tmax < termination_) finish(x, y);
+  }
+  // T's threshold; −∞ without early termination, so that no T (factor models' may dip below 0)
+  // falls below it.
+  float termination() const {
+    return termination_ > 0.f ? termination_ : -std::numeric_limits<float>::infinity();
+  }
+  // Marks a live pixel finished (update() for a caller that has compared T itself).
+  void finish(int x, int y) {
+    done_[static_cast<std::size_t>(y - y0_) * width_ + x] = 1;
+    --live_per_block_[x / kBlock];
+    --live_;
   }
 
  private:

@@ -10,7 +10,9 @@
 
 namespace svr::splat {
 
+// dynamic_width: the any-k loop even where k has a compiled width (tests: the same bytes).
 void compositeDirect(const SplatList& list, const FootprintTable& table, const Bands& bands,
-                     float termination, LightIndependentImage& image, ProgressCounter& progress);
+                     float termination, bool dynamic_width, LightIndependentImage& image,
+                     ProgressCounter& progress);
 
 }  // namespace svr::splat

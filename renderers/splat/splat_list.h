@@ -87,11 +87,22 @@ struct Bands {
 };
 Bands bandsOf(const SplatList& list, int height, int rows);
 
+// ⌊x⌋ and ⌈x⌉ as ints, for x within int range: std::floor and std::ceil are libm calls on the
+// baseline x86-64 target (no SSE4.1 rounding), four per splat row.
+inline int floorToInt(float x) {
+  const int t = static_cast<int>(x);  // towards zero
+  return t - (x < static_cast<float>(t));
+}
+inline int ceilToInt(float x) {
+  const int t = static_cast<int>(x);
+  return t + (x > static_cast<float>(t));
+}
+
 // The pixel range [lo, hi] whose centres lie within [centre − half, centre + half], clamped to
 // [0, size − 1] (empty when lo > hi).
 inline void pixelRange(float centre, float half, int size, int& lo, int& hi) {
-  lo = std::max(static_cast<int>(std::ceil(centre - half - 0.5f)), 0);
-  hi = std::min(static_cast<int>(std::floor(centre + half - 0.5f)), size - 1);
+  lo = std::max(ceilToInt(centre - half - 0.5f), 0);
+  hi = std::min(floorToInt(centre + half - 0.5f), size - 1);
 }
 
 // Within [xa, xb], the pixels of one row whose centres can lie inside the footprint's ellipse
@@ -108,8 +119,8 @@ inline void ellipseRow(const Footprint& fp, float sx, float dy, float cut2, int 
   }
   const float centre = sx - fp.b * dy / fp.a - 0.5f;  // in pixel indices
   const float half = std::sqrt(disc) / fp.a + 0.01f;
-  lo = std::max(xa, static_cast<int>(std::ceil(centre - half)));
-  hi = std::min(xb, static_cast<int>(std::floor(centre + half)));
+  lo = std::max(xa, ceilToInt(centre - half));
+  hi = std::min(xb, floorToInt(centre + half));
 }
 
 }  // namespace svr::splat

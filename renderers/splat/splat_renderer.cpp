@@ -71,7 +71,8 @@ LightIndependentImage SplatRenderer::renderImpl(const RenderRequest& req,
     const double thickness = settings.sheet_voxels * min_spacing;
     splat::compositeSheets(list, table, bands, thickness, post, termination, image, progress);
   } else {
-    splat::compositeDirect(list, table, bands, termination, image, progress);
+    splat::compositeDirect(list, table, bands, termination, force_.dynamic_width, image,
+                           progress);
   }
   return image;
 }

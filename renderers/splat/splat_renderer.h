@@ -8,16 +8,22 @@
 // (`svr render --help-options splat`).
 
 #include "renderers/core/renderer.h"
+#include "spectral/relight_kernel.h"
 
 namespace svr {
 
 class SplatRenderer final : public Renderer {
  public:
+  // force.dynamic_width: the any-k compositing loops (tests); the splats have one instruction set.
+  explicit SplatRenderer(KernelForce force = {}) : force_(force) {}
   const BackendInfo& info() const override;
 
  protected:
   LightIndependentImage renderImpl(const RenderRequest& request, const BackendOptions& options,
                                    ProgressCounter& progress) const override;
+
+ private:
+  KernelForce force_;
 };
 
 }  // namespace svr

@@ -264,6 +264,33 @@ TEST(Splat, IdenticalBytesForOneAndTwoThreads) {
   }
 }
 
+// Direct compositing's loops are compiled for the common channel counts (channel_widths.h)
+// and for any k: both give the same bytes, over scalar (the engine) and spectral transmittance
+// and a label map, at every compiled width and one that is not.
+TEST(Splat, FixedWidthDirectCompositingEqualsDynamicWidth) {
+  Scene engine = loadScene(test::rendererDataDir() + "/scenes/engine.json", test::rendererLibrary());
+  engine.width = engine.height = 48;
+  const Scene spectral_slab = test::slabScene(0.05, "ColorChecker/cyan", 0.5);
+  for (const Scene& scene : {engine, test::phantomScene(), spectral_slab})
+    for (const int k : {3, 4, 6, 8, 5}) {
+      const auto model = makeSpectralModel(test::rendererObserver(), k);
+      const auto fixed = renderScene(scene, *model, SplatRenderer(), splatOptions("direct"));
+      const auto dynamic = renderScene(scene, *model, SplatRenderer({.dynamic_width = true}),
+                                       splatOptions("direct"));
+      ASSERT_EQ(fixed.planes(), dynamic.planes());
+      for (int p = 0; p < fixed.planes(); ++p)
+        ASSERT_EQ(std::memcmp(fixed.planeFloat(p).data(), dynamic.planeFloat(p).data(),
+                              fixed.pixels() * sizeof(float)),
+                  0)
+            << "k " << k << " plane " << p;
+      float peak_s = 0.f, least_t = 1.f;  // something was drawn: it scatters or absorbs
+      for (int c = 0; c < k; ++c)
+        for (const float v : fixed.planeFloat(c)) peak_s = std::max(peak_s, v);
+      for (const float t : fixed.planeFloat(k)) least_t = std::min(least_t, t);
+      EXPECT_TRUE(peak_s > 0.01f || least_t < 0.9f) << "k " << k << ": " << peak_s << " " << least_t;
+    }
+}
+
 // Principal-axis and 45° views (where direct mode's order and the sheets' orientation switch):
 // finite everywhere, and no gaps: wherever the raycaster sees the phantom (T < 0.5), so does the
 // splatter (T < 0.9).
