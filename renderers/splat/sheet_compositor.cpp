@@ -99,12 +99,16 @@ class SheetContent {
     for (int c = 0; c < kt_; ++c) b[1 + c] += payload[1 + c] * length;
     for (int c = 0; c < k_; ++c) b[1 + kt_ + c] += scatter * payload[1 + kt_ + c];
   }
-  // Composites pixel (x, y) of the sheet, if anything reached it, and clears it.
+  // Composites pixel (x, y) of the sheet, if anything reached it and it is not finished, and
+  // clears it.
   void composite(float* b, int x, int y, BandState& state) {
     bool empty = !(b[0] > 0.f);
     for (int c = 0; c < kt_ && empty && !post_; ++c) empty = !(b[1 + c] > 0.f);
     if (empty) return;  // nothing reached this pixel in this sheet: it is still all zero
-    if (!post_) {
+    if (state.done(x, y)) {
+      // Splats are added to finished pixels too (one test a sheet pixel, not one a kernel
+      // there); what they added is dropped, as early termination drops the rest of a ray.
+    } else if (!post_) {
       compositePixel(x, y, b[0], b + 1, b + 1 + kt_, k_, kt_, state);
     } else {
       const float length = b[0], inv = 1.f / length;
@@ -233,13 +237,13 @@ void compositeBand(const SplatList& list, const FootprintTable& table,
       rx1 = std::max(rx1, a.xb);
       ry0 = std::min(ry0, a.ya);
       ry1 = std::max(ry1, a.yb);
-      for (int y = a.ya; y <= a.yb; ++y, chord += 2)
-        for (int x = chord[0]; x <= chord[1]; ++x, ++w) {
-          if (!(*w > 0.f) || state.done(x, y)) continue;
-          const float length = share * *w;  // world length of the kernel in this sheet
-          content.add(payload, length,
-                      &sheet[(static_cast<std::size_t>(y - y0) * width + x) * stride]);
-        }
+      // Every pixel of the chords, finished ones too (composite() drops those), and those
+      // just outside the ellipse, whose length 0 adds nothing: no test a pixel.
+      for (int y = a.ya; y <= a.yb; ++y, chord += 2) {
+        float* b = &sheet[(static_cast<std::size_t>(y - y0) * width + chord[0]) * stride];
+        for (int x = chord[0]; x <= chord[1]; ++x, ++w, b += stride)
+          content.add(payload, share * *w, b);  // the kernel's world length in this sheet
+      }
     }
     compositeSheet(sheet, content, rx0, rx1, ry0, ry1, state);
     ++j;
