@@ -46,6 +46,18 @@ inline void blendEntries(const ClassifiedVolume& cv, const float* alpha_table,
   }
 }
 
+// Entry e as one row of a blend table, [α, α·specular, α·ρ_0 … α·ρ_{k−1}, t_0 … t_{kt−1}]
+// (2 + k + kt floats): the raycaster's sample table and the pre-classified shear-warp records.
+inline void entryRow(const ClassifiedVolume& cv, int e, float* row) {
+  const int k = cv.k, kt = cv.t_channels;
+  const float a = cv.alpha[e];
+  row[0] = a;
+  row[1] = a * cv.specular[e];
+  for (int c = 0; c < k; ++c) row[2 + c] = a * cv.reflectance[static_cast<std::size_t>(e) * k + c];
+  for (int c = 0; c < kt; ++c)
+    row[2 + k + c] = cv.transmission[static_cast<std::size_t>(e) * kt + c];
+}
+
 // A scalar value's bin coordinate in the classification table (entry + fraction, not yet
 // clamped to the table). It is linear in the value, so backends that interpolate may store and
 // interpolate bin coordinates instead of values. In float, as the raycaster's BinScale: a

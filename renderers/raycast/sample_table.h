@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "renderers/core/classification.h"
+#include "renderers/core/classified_sample.h"
 
 namespace svr::raycast {
 
@@ -23,17 +24,9 @@ struct SampleTable {
 
   explicit SampleTable(const ClassifiedVolume& cv)
       : stride(strideFor(2 + cv.k + cv.t_channels)) {
-    const int k = cv.k, kt = cv.t_channels;
     rows.assign(static_cast<std::size_t>(cv.entries) * stride, 0.f);
-    for (int e = 0; e < cv.entries; ++e) {
-      float* row = &rows[static_cast<std::size_t>(e) * stride];
-      const float a = cv.alpha[e];
-      row[0] = a;
-      row[1] = a * cv.specular[e];
-      for (int c = 0; c < k; ++c) row[2 + c] = a * cv.reflectance[static_cast<std::size_t>(e) * k + c];
-      for (int c = 0; c < kt; ++c)
-        row[2 + k + c] = cv.transmission[static_cast<std::size_t>(e) * kt + c];
-    }
+    for (int e = 0; e < cv.entries; ++e)
+      entryRow(cv, e, &rows[static_cast<std::size_t>(e) * stride]);
   }
   // Entry e's row; kStride: the stride when known at compile time (0: use the run-time one).
   template <int kStride>

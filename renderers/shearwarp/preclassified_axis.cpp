@@ -82,17 +82,9 @@ namespace {
 // the stride: a voxel's record is its bin's two entries blended (classification is linear in
 // the entries' weights), two vector lerps a voxel for rgb instead of 2 × (2 + k + kt) products.
 std::vector<float> entryRecords(const ClassifiedVolume& cv, int stride) {
-  const int k = cv.k, kt = cv.t_channels;
   std::vector<float> table(static_cast<std::size_t>(cv.entries) * stride, 0.f);
-  for (int e = 0; e < cv.entries; ++e) {
-    float* r = &table[static_cast<std::size_t>(e) * stride];
-    const float a = cv.alpha[e];
-    r[0] = a;
-    r[1] = a * cv.specular[e];
-    for (int c = 0; c < k; ++c) r[2 + c] = a * cv.reflectance[static_cast<std::size_t>(e) * k + c];
-    for (int c = 0; c < kt; ++c)
-      r[2 + k + c] = cv.transmission[static_cast<std::size_t>(e) * kt + c];
-  }
+  for (int e = 0; e < cv.entries; ++e)
+    entryRow(cv, e, &table[static_cast<std::size_t>(e) * stride]);
   return table;
 }
 
