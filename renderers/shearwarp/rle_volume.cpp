@@ -62,7 +62,9 @@ class SliceGroup {
     // Planes a cache line more than a slice apart: slices of power-of-two size would otherwise
     // map every plane's row to the same cache sets.
     plane_ = static_cast<std::size_t>(layout.n_i) * layout.n_j + 16;
-    float* const planes = buffer.get(count * plane_);
+    // Room for a whole group and both neighbours, which the first group (no slice before it)
+    // does not use: the buffer is then sized once, not grown (and faulted in) again by the next.
+    float* const planes = buffer.get((k1 - k0 + 2) * plane_);
     // A transpose, in tiles of kTile voxels of a row by every slice of the group: each voxel's
     // slices are contiguous in the volume and its row neighbours a volume row apart, so a tile
     // reads kTile short contiguous runs and writes kTile-voxel runs of each slice.
