@@ -11,6 +11,9 @@
 
 namespace svr::shearwarp {
 
+// The last of the kNormalSide steps along each coordinate of the folded square.
+constexpr float kTopStep = kNormalSide - 1;
+
 // Octahedral mapping (Meyer et al. 2010): the unit sphere folded onto [−1, 1]², kNormalSide
 // steps a side, each coordinate rounded to the nearest step.
 std::uint16_t encodeNormal(const float g[3]) {
@@ -22,20 +25,18 @@ std::uint16_t encodeNormal(const float g[3]) {
     const float fy = (1.f - std::abs(x)) * (y >= 0.f ? 1.f : -1.f);
     x = fx, y = fy;
   }
-  constexpr int kTop = kNormalSide - 1;
   // c lies in [−1, 1], so the step plus a half is non-negative and truncation rounds it (half
   // up; libm's lround was a third of the encoding's time). A NaN falls to step 0.
   const auto q = [](float c) {
-    const float step = (c * 0.5f + 0.5f) * static_cast<float>(kTop) + 0.5f;
+    const float step = (c * 0.5f + 0.5f) * kTopStep + 0.5f;
     return step > 0.f ? std::min(static_cast<int>(step), kNormalSide - 1) : 0;
   };
   return static_cast<std::uint16_t>(q(y) * kNormalSide + q(x));
 }
 
 void decodeNormal(std::uint16_t index, float n[3]) {
-  constexpr float kTop = kNormalSide - 1;
-  float x = static_cast<float>(index % kNormalSide) / kTop * 2.f - 1.f;
-  float y = static_cast<float>(index / kNormalSide) / kTop * 2.f - 1.f;
+  float x = static_cast<float>(index % kNormalSide) / kTopStep * 2.f - 1.f;
+  float y = static_cast<float>(index / kNormalSide) / kTopStep * 2.f - 1.f;
   const float z = 1.f - std::abs(x) - std::abs(y);
   if (z < 0.f) {
     const float fx = (1.f - std::abs(y)) * (x >= 0.f ? 1.f : -1.f);
@@ -49,13 +50,12 @@ void decodeNormal(std::uint16_t index, float n[3]) {
 // Four normals at a time, each lane taking encodeNormal's operations in its order (so the two
 // agree bit for bit), with selects for its branches.
 void encodeNormals(std::span<const VoxelRecord> voxels, std::uint16_t* normals) {
-  constexpr float kTop = kNormalSide - 1;
   const Float4 one = splat4(1.f), half = splat4(0.5f), zero = splat4(0.f);
   const auto sign = [&](Float4 c) { return c >= zero ? one : -one; };
   const auto q = [&](Float4 c) {
-    Float4 step = (c * half + half) * splat4(kTop) + half;
+    Float4 step = (c * half + half) * splat4(kTopStep) + half;
     step = step > zero ? step : zero;  // a NaN too
-    step = step < splat4(kTop) ? step : splat4(kTop);
+    step = step < splat4(kTopStep) ? step : splat4(kTopStep);
     return __builtin_convertvector(step, Int4);
   };
   std::size_t n = 0;
