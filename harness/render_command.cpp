@@ -454,7 +454,7 @@ CommandEntry render() {
             if (context.distribution)
               sub.add_option("--balance", o->balance,
                              "how the kd-split shares the volume out among the ranks: work "
-                             "(bricks that take equal time, estimated from a 64³ lattice of the "
+                             "(bricks that take equal time, estimated from a 128³ lattice of the "
                              "volume; raycast, each brick within 1.25× its share of the voxels) "
                              "or voxels (equal memory)")
                   ->check(CLI::IsMember({"work", "voxels"}))
