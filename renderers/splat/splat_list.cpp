@@ -1,5 +1,7 @@
 #include "renderers/splat/splat_list.h"
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <cmath>
 #include <glm/geometric.hpp>
@@ -7,6 +9,7 @@
 
 #include "renderers/core/classified_sample.h"
 #include "renderers/core/splat_projection.h"
+#include "spectral/error.h"
 
 namespace svr::splat {
 
@@ -94,6 +97,21 @@ std::vector<VoxelShade> shadeVoxels(const SplatVoxels& sv, const ClassifiedVolum
 SplatList::SplatList(const ClassifiedVolume& cv, const RenderRequest& req,
                      const Projector& projector, SplatVoxels::Set set)
     : cv_(cv), voxels_(SplatVoxels::of(cv, set)), k_(cv.k), kt_(cv.t_channels) {
+  row_stride_ = (2 + k_ + kt_ + 3) / 4 * 4;
+  if (row_stride_ > kMaxRowStride)
+    throw Error(fmt::format("splat: {} + {} channels are more than the {} a splat's blend holds",
+                            k_, kt_, kMaxSplatChannels));
+  rows_.assign(static_cast<std::size_t>(cv.entries) * row_stride_, 0.f);
+  const auto sigma_alpha = voxels_->sigmaAlpha();
+  const auto sigma_t = voxels_->sigmaT();
+  for (int e = 0; e < cv.entries; ++e) {
+    float* row = &rows_[static_cast<std::size_t>(e) * row_stride_];
+    const float a = sigma_alpha[e];
+    row[0] = a;
+    row[1] = a * cv.specular[e];
+    for (int c = 0; c < k_; ++c) row[2 + c] = a * cv.reflectance[static_cast<std::size_t>(e) * k_ + c];
+    for (int c = 0; c < kt_; ++c) row[2 + k_ + c] = sigma_t[static_cast<std::size_t>(e) * kt_ + c];
+  }
   ProjectedVoxels projected = projectVoxels(*voxels_, cv, projector, req.width, req.height);
   const auto voxels = voxels_->voxels();
   const bool any_specular = req.shading.specular > 0.0 &&
@@ -110,18 +128,6 @@ SplatList::SplatList(const ClassifiedVolume& cv, const RenderRequest& req,
   }
   footprints_ = std::move(projected.footprints);
   for (const Footprint& fp : footprints_) max_depth_sigma_ = std::max(max_depth_sigma_, fp.depth_sigma);
-}
-
-void SplatList::classify(int e, float frac, float shade, float highlight,
-                         SplatCoefficients& out) const {
-  // The same blend as every backend's samples, weighted by the scattering extinction.
-  const int entry[2] = {e, std::min(e + 1, cv_.entries - 1)};
-  const float w[2] = {1.f - frac, frac};
-  float spec_w;
-  blendEntries(cv_, voxels_->sigmaAlpha().data(), voxels_->sigmaT().data(), entry, w, 2, k_, kt_,
-               out.sigma_alpha, spec_w, out.colour.data(), out.sigma_t.data());
-  const float white = highlight * spec_w;
-  for (int c = 0; c < k_; ++c) out.colour[c] = out.colour[c] * shade + cv_.white[c] * white;
 }
 
 }  // namespace svr::splat

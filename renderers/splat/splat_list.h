@@ -19,6 +19,10 @@
 
 namespace svr::splat {
 
+// The most colour channels (and spectral transmittance channels) a splat render takes: the
+// backend's max_channels.
+inline constexpr int kMaxSplatChannels = 128;
+
 struct Splat {
   float x, y;           // image position, pixels
   float depth;          // along the view axis, world units
@@ -49,7 +53,8 @@ class SplatList {
   // Fills out.sigma_t and out.colour (caller-owned storage of kt and k floats): the splat
   // classified at its voxel.
   void coefficients(const Splat& splat, SplatCoefficients& out) const {
-    classify(splat.entry, splat.frac, splat.shade, splat.highlight, out);
+    classify(splat.entry, std::min(splat.entry + 1, cv_.entries - 1), splat.frac, splat.shade,
+             splat.highlight, out);
   }
   // The same for a reconstructed value `bin` (the classification's bin coordinate, as
   // entry + frac) with the shade and highlight reconstructed beside it.
@@ -57,16 +62,37 @@ class SplatList {
     int e0, e1;
     float frac;
     entriesOfBin(cv_, bin, e0, e1, frac);
-    classify(e0, frac, shade, highlight, out);
+    classify(e0, e1, frac, shade, highlight, out);
   }
 
  private:
-  void classify(int entry, float frac, float shade, float highlight,
-                SplatCoefficients& out) const;
+  // Entries e0 and e1 blended (weight frac on e1) as classified_sample.h's blendEntries blends
+  // them, opacity-weighted, from their rows of the blend table: two rows' lerp and one division,
+  // where blendEntries' loops over its tables took about 350 instructions a call, a million or
+  // more calls a frame (once per splat and band, or per post-classified sheet pixel).
+  void classify(int e0, int e1, float frac, float shade, float highlight,
+                SplatCoefficients& out) const {
+    const float* r0 = &rows_[static_cast<std::size_t>(e0) * row_stride_];
+    const float* r1 = &rows_[static_cast<std::size_t>(e1) * row_stride_];
+    alignas(16) float b[kMaxRowStride];
+    const Float4 w0 = splat4(1.f - frac), w1 = splat4(frac);
+    for (int j = 0; j < row_stride_; j += 4) store4(b + j, w0 * load4(r0 + j) + w1 * load4(r1 + j));
+    out.sigma_alpha = b[0];
+    // Σ w σ_α ρ / Σ w σ_α, the opacity-weighted reflectance; 0 where nothing scatters.
+    const float inv = b[0] > 0.f ? 1.f / b[0] : 0.f;
+    const float scale = shade * inv, white = highlight * b[1] * inv;
+    for (int c = 0; c < k_; ++c) out.colour[c] = b[2 + c] * scale + cv_.white[c] * white;
+    for (int c = 0; c < kt_; ++c) out.sigma_t[c] = b[2 + k_ + c];
+  }
+  // Rows of the blend table: [σ_α, σ_α·specular, σ_α·ρ_0 … σ_α·ρ_{k−1}, σ_t,0 … σ_t,kt−1] per
+  // entry, padded to whole vectors.
+  static constexpr int kMaxRowStride = (2 + 2 * kMaxSplatChannels + 3) / 4 * 4;
   const ClassifiedVolume& cv_;
   std::shared_ptr<const SplatVoxels> voxels_;
   int k_, kt_;
   std::vector<Splat> splats_;
+  std::vector<float> rows_;  // the blend table, row_stride_ floats an entry
+  int row_stride_ = 0;
   std::vector<Footprint> footprints_;  // one (orthographic) or one per splat
   float max_depth_sigma_ = 0.f;
 };

@@ -11,7 +11,11 @@
 #include "renderers/raycast/raycast_renderer.h"
 #include "renderers/core/splat_footprint.h"
 #include "renderers/core/splat_settings.h"
+#include "renderers/splat/splat_list.h"
 #include "renderers/splat/splat_renderer.h"
+#include "renderers/core/classified_sample.h"
+#include "renderers/core/scene_render.h"
+#include "renderers/core/splat_projection.h"
 #include "spectral/error.h"
 #include "spectral/image_difference.h"
 #include "tests/renderers/test_scenes.h"
@@ -267,6 +271,54 @@ TEST(Splat, IdenticalBytesForOneAndTwoThreads) {
 // Direct compositing's loops are compiled for the common channel counts (channel_widths.h)
 // and for any k: both give the same bytes, over scalar (the engine) and spectral transmittance
 // and a label map, at every compiled width and one that is not.
+// A splat's coefficients come from two rows of its blend table (σ_α, σ_α·s, σ_α·ρ, σ_t): the
+// same opacity-weighted blend as blendEntries over the splat's per-unit-length tables, to float
+// rounding, at every entry and between entries, for scalar and spectral transmittance and where
+// nothing scatters (σ_α = 0: colour 0).
+TEST(Splat, BlendTableCoefficientsEqualBlendEntries) {
+  Scene engine = loadScene(test::rendererDataDir() + "/scenes/engine.json", test::rendererLibrary());
+  engine.width = engine.height = 32;
+  const Scene spectral_slab = test::slabScene(0.05, "ColorChecker/cyan", 0.5);
+  for (const Scene& scene : {engine, spectral_slab})
+    for (const int k : {3, 6}) {
+      const auto model = makeSpectralModel(test::rendererObserver(), k);
+      const ClassifiedVolume cv = classifyScene(scene, *model);
+      const RenderRequest req = sceneRequest(scene, cv);
+      const splat::Projector projector(req.camera, req.width, req.height, cv.spacing,
+                                       splat::splatSettings(readBackendOptions(
+                                           splat::splatOptionSpecs(), {}, "splat")).kernel);
+      const splat::SplatList list(cv, req, projector, splat::SplatVoxels::Set::kVisible);
+      const auto voxels = splat::SplatVoxels::of(cv, splat::SplatVoxels::Set::kVisible);
+      const int kt = cv.t_channels;
+      std::vector<float> sigma_t(kt), colour(k), ref_refl(k), ref_t(kt);
+      int scattering = 0, clear = 0;
+      for (int e = 0; e < cv.entries; ++e)
+        for (const float frac : {0.f, 0.25f, 0.5f, 0.875f}) {
+          const float shade = 0.3f + 0.7f * frac, highlight = 0.6f - 0.5f * frac;
+          splat::SplatCoefficients coef{0.f, sigma_t, colour};
+          list.classifyBin(static_cast<float>(e) + frac, shade, highlight, coef);
+          int e0, e1;
+          float f;
+          entriesOfBin(cv, static_cast<float>(e) + frac, e0, e1, f);
+          const int entry[2] = {e0, e1};
+          const float w[2] = {1.f - f, f};
+          float ref_alpha, ref_spec;
+          blendEntries(cv, voxels->sigmaAlpha().data(), voxels->sigmaT().data(), entry, w, 2, k,
+                       kt, ref_alpha, ref_spec, ref_refl.data(), ref_t.data());
+          ASSERT_NEAR(coef.sigma_alpha, ref_alpha, 1e-6f * std::abs(ref_alpha) + 1e-12f) << e;
+          for (int c = 0; c < kt; ++c)
+            ASSERT_NEAR(sigma_t[c], ref_t[c], 1e-6f * std::abs(ref_t[c]) + 1e-12f) << e << " " << c;
+          for (int c = 0; c < k; ++c) {
+            const float want = ref_refl[c] * shade + cv.white[c] * highlight * ref_spec;
+            ASSERT_NEAR(colour[c], want, 2e-6f * (std::abs(want) + 1.f)) << e << " " << c;
+          }
+          (ref_alpha > 0.f ? scattering : clear) += 1;
+        }
+      EXPECT_GT(scattering, 0);  // both branches were taken
+      EXPECT_GT(clear, 0);
+    }
+}
+
 TEST(Splat, FixedWidthDirectCompositingEqualsDynamicWidth) {
   Scene engine = loadScene(test::rendererDataDir() + "/scenes/engine.json", test::rendererLibrary());
   engine.width = engine.height = 48;
