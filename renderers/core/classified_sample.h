@@ -76,6 +76,21 @@ inline void entriesOfBin(const ClassifiedVolume& cv, float bin, int& e0, int& e1
   frac = bin - e0;
 }
 
+// entriesOfBin for four bin coordinates at once (finite ones: a NaN has no entry), each lane
+// with the scalar's operations: the same entries and the same weight.
+inline void entriesOfBins(const ClassifiedVolume& cv, Float4 bins, Int4& e0, Int4& e1,
+                          Float4& frac) {
+  const Float4 last = splat4(static_cast<float>(cv.entries - 1));
+  const int l = cv.entries - 1, t = std::max(cv.entries - 2, 0);
+  const Int4 last_entry{l, l, l, l}, top{t, t, t, t};
+  Float4 b = bins < splat4(0.f) ? splat4(0.f) : bins;
+  b = last < b ? last : b;
+  e0 = __builtin_convertvector(b, Int4);
+  e0 = e0 < top ? e0 : top;
+  e1 = e0 + 1 < last_entry ? e0 + 1 : last_entry;
+  frac = b - __builtin_convertvector(e0, Float4);
+}
+
 // prefix[e]: how many entries below e have non-zero opacity (entries + 1 values), so that
 // whether a range of entries holds a visible one is one subtraction.
 inline std::vector<int> nonzeroOpacityPrefix(const ClassifiedVolume& cv) {

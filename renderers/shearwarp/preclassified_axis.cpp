@@ -104,24 +104,15 @@ void classifyRecords(const ClassifiedVolume& cv, const float* table, int stride,
       store4(r + 4 * q, lo + (load4(b + 4 * q) - lo) * splat4(w));
     }
   };
-  const Float4 last = splat4(static_cast<float>(cv.entries - 1));
-  const int l = cv.entries - 1, t = std::max(cv.entries - 2, 0);
-  const Int4 last_entry{l, l, l, l}, top{t, t, t, t};
   std::size_t n = 0;
   for (; n + 4 <= voxels.size(); n += 4) {
     const Float4 bins{voxels[n].bin, voxels[n + 1].bin, voxels[n + 2].bin, voxels[n + 3].bin};
     Int4 e0, e1;
     Float4 w = splat4(0.f);
-    if (cv.labels) {
+    if (cv.labels)
       e0 = e1 = __builtin_convertvector(bins, Int4);  // the label's own entry
-    } else {
-      Float4 b = bins < splat4(0.f) ? splat4(0.f) : bins;
-      b = last < b ? last : b;
-      e0 = __builtin_convertvector(b, Int4);
-      e0 = e0 < top ? e0 : top;
-      e1 = e0 + 1 < last_entry ? e0 + 1 : last_entry;
-      w = b - __builtin_convertvector(e0, Float4);
-    }
+    else
+      entriesOfBins(cv, bins, e0, e1, w);
     for (int m = 0; m < 4; ++m) blend(n + m, e0[m], e1[m], w[m]);
   }
   for (; n < voxels.size(); ++n) {

@@ -6,6 +6,7 @@
 
 #include <cmath>
 #include <cstdint>
+#include <cstring>
 #include <glm/geometric.hpp>
 
 namespace svr {
@@ -98,6 +99,50 @@ TEST(Phong4, EachLaneEqualsPhong) {
         const PhongTerms expected = phong(p, one);
         ASSERT_EQ(shade[lane], expected.shade) << s << " " << round << " " << lane;
         ASSERT_EQ(highlight[lane], expected.highlight) << s << " " << round << " " << lane;
+      }
+    }
+  }
+}
+
+}  // namespace
+}  // namespace svr
+
+namespace svr {
+namespace {
+
+// The pre-classified shear-warp records find each voxel's two entries four at a time: every
+// lane gives entriesOfBin's entries and weight, bit for bit, below, across and above the table,
+// on whole bins, just under them, and for one- and two-entry tables.
+TEST(EntriesOfBins, EachLaneEqualsEntriesOfBin) {
+  for (const int entries : {1, 2, 256, 4096}) {
+    ClassifiedVolume cv;
+    cv.entries = entries;
+    std::vector<float> bins = {-1e30f, -3.f, -0.f, 0.f, 1e-7f, 0.5f, 1.f, 1.5f};
+    const float last = static_cast<float>(entries - 1);
+    for (const float b : {last - 1.f, std::nextafter(last - 1.f, 0.f), last - 0.25f,
+                          std::nextafter(last, 0.f), last, std::nextafter(last, 1e30f),
+                          last + 7.f, 1e30f})
+      bins.push_back(b);
+    std::uint32_t state = 12345u;
+    for (int n = 0; n < 4000; ++n) {
+      state = state * 1664525u + 1013904223u;
+      bins.push_back((static_cast<float>(state >> 8) / 16777216.f) * (last + 4.f) - 2.f);
+    }
+    while (bins.size() % 4) bins.push_back(0.f);
+    for (std::size_t n = 0; n < bins.size(); n += 4) {
+      Int4 e0, e1;
+      Float4 frac;
+      entriesOfBins(cv, Float4{bins[n], bins[n + 1], bins[n + 2], bins[n + 3]}, e0, e1, frac);
+      for (int m = 0; m < 4; ++m) {
+        int s0, s1;
+        float sfrac;
+        entriesOfBin(cv, bins[n + m], s0, s1, sfrac);
+        ASSERT_EQ(e0[m], s0) << entries << " entries, bin " << bins[n + m];
+        ASSERT_EQ(e1[m], s1) << entries << " entries, bin " << bins[n + m];
+        ASSERT_EQ(std::memcmp(&frac[m], &sfrac, sizeof(float)), 0)
+            << entries << " entries, bin " << bins[n + m] << ": " << frac[m] << " vs " << sfrac;
+        ASSERT_GE(s0, 0);
+        ASSERT_LT(s1, entries);
       }
     }
   }
