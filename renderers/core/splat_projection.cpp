@@ -4,10 +4,11 @@
 
 namespace svr::splat {
 
-glm::dvec3 voxelWorld(const ClassifiedVolume& cv, const std::array<int, 3>& xyz) {
+glm::dvec3 voxelWorld(const ClassifiedVolume& cv, std::uint32_t index) {
   const Dims& d = cv.dims;
   const glm::dvec3 centre = 0.5 * glm::dvec3(d[0] - 1, d[1] - 1, d[2] - 1);
-  return (glm::dvec3(xyz[0], xyz[1], xyz[2]) - centre) * cv.spacing;
+  const std::uint32_t x = index % d[0], y = (index / d[0]) % d[1], z = index / (d[0] * d[1]);
+  return (glm::dvec3(x, y, z) - centre) * cv.spacing;
 }
 
 ProjectedVoxels projectVoxels(const SplatVoxels& voxels, const ClassifiedVolume& cv,
@@ -20,20 +21,16 @@ ProjectedVoxels projectVoxels(const SplatVoxels& voxels, const ClassifiedVolume&
   std::vector<glm::vec2> position(total);
   std::vector<Footprint> footprint(ortho ? 0 : total);
   std::vector<std::uint8_t> keep(total);
-#pragma omp parallel
-  {
-    VoxelWalker walk(cv.dims);  // each thread's indices ascend (a static schedule)
-#pragma omp for schedule(static)
-    for (std::size_t i = 0; i < total; ++i) {
-      const glm::dvec3 world = voxelWorld(cv, walk.at(list[i].index));
-      const glm::dvec3 pos = projector.project(world);
-      const Footprint fp = ortho ? any : projector.footprint(world);
-      keep[i] = (ortho || pos.z > 0.0) && !(pos.x + fp.half_w < 0 || pos.x - fp.half_w > width ||
-                                            pos.y + fp.half_h < 0 || pos.y - fp.half_h > height);
-      depth[i] = static_cast<float>(pos.z);
-      position[i] = {static_cast<float>(pos.x), static_cast<float>(pos.y)};
-      if (!ortho) footprint[i] = fp;
-    }
+#pragma omp parallel for schedule(static)
+  for (std::size_t i = 0; i < total; ++i) {
+    const glm::dvec3 world = voxelWorld(cv, list[i].index);
+    const glm::dvec3 pos = projector.project(world);
+    const Footprint fp = ortho ? any : projector.footprint(world);
+    keep[i] = (ortho || pos.z > 0.0) && !(pos.x + fp.half_w < 0 || pos.x - fp.half_w > width ||
+                                          pos.y + fp.half_h < 0 || pos.y - fp.half_h > height);
+    depth[i] = static_cast<float>(pos.z);
+    position[i] = {static_cast<float>(pos.x), static_cast<float>(pos.y)};
+    if (!ortho) footprint[i] = fp;
   }
   ProjectedVoxels out;
   out.ids = keptIndices(keep);

@@ -28,8 +28,8 @@ struct ProjectedVoxels {
   }
 };
 
-// World position of voxel (x, y, z), the volume centred on the origin.
-glm::dvec3 voxelWorld(const ClassifiedVolume& cv, const std::array<int, 3>& xyz);
+// World position of voxel `index` (x + y·nx + z·nx·ny), the volume centred on the origin.
+glm::dvec3 voxelWorld(const ClassifiedVolume& cv, std::uint32_t index);
 
 ProjectedVoxels projectVoxels(const SplatVoxels& voxels, const ClassifiedVolume& cv,
                               const Projector& projector, int width, int height);

@@ -12,7 +12,6 @@
 // visible voxel — and pairs of empty voxels a thin visible value range lies between, which the
 // raycaster's interpolation finds and voxel-centre classification misses.
 
-#include <array>
 #include <cstdint>
 #include <memory>
 #include <span>
@@ -26,39 +25,6 @@ struct SplatVoxel {
   std::uint32_t index;  // x + y·nx + z·nx·ny
   std::uint16_t entry;  // classification entry (and entry + 1, weighted by frac)
   float frac;
-};
-
-// The coordinates of voxel indices taken in ascending order (a splat list is in index order),
-// mostly without dividing: the next index in the same row is the last one's x plus the step,
-// and only a voxel that starts another row is divided out. Three integer divisions a voxel
-// took about 10 ns here, a tenth of a direct splat frame at 512² for the engine's 4 M voxels
-// (projection and shading each decomposed every index). Any order is correct (a step back
-// wraps to a large unsigned step, which divides); ascending is what makes it cheap.
-class VoxelWalker {
- public:
-  explicit VoxelWalker(const Dims& dims)
-      : nx_(static_cast<std::uint32_t>(dims[0])), ny_(static_cast<std::uint32_t>(dims[1])) {}
-  // (x, y, z) of `index`.
-  std::array<int, 3> at(std::uint32_t index) {
-    const std::uint32_t step = index - last_;
-    if (step < row_left_) {
-      x_ += step;
-      row_left_ -= step;
-    } else {
-      const std::uint32_t row = index / nx_;
-      x_ = index - row * nx_;
-      y_ = row % ny_;
-      z_ = row / ny_;
-      row_left_ = nx_ - x_;
-    }
-    last_ = index;
-    return {static_cast<int>(x_), static_cast<int>(y_), static_cast<int>(z_)};
-  }
-
- private:
-  std::uint32_t nx_, ny_;
-  std::uint32_t last_ = 0, row_left_ = 0;  // 0: the first index divides
-  std::uint32_t x_ = 0, y_ = 0, z_ = 0;
 };
 
 class SplatVoxels {

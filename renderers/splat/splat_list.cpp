@@ -34,8 +34,8 @@ std::vector<VoxelShade> shadeVoxels(const SplatVoxels& sv, const ClassifiedVolum
   const Dims& d = cv.dims;
   const bool ortho = projector.orthographic();
   std::vector<VoxelShade> out(voxels.size());
-  const auto setupAt = [&](const std::array<int, 3>& xyz) {
-    const glm::dvec3 view = projector.towardsEye(voxelWorld(cv, xyz));
+  const auto setupAt = [&](std::uint32_t index) {
+    const glm::dvec3 view = projector.towardsEye(voxelWorld(cv, index));
     const glm::dvec3 light = req.light_direction ? *req.light_direction : view;
     PhongSetup setup(req.shading, light, glm::normalize(light + view));
     if (!any_specular) setup.specular = 0.f;
@@ -58,13 +58,14 @@ std::vector<VoxelShade> shadeVoxels(const SplatVoxels& sv, const ClassifiedVolum
 #pragma omp for schedule(dynamic)
     for (int run = 0; run < runs; ++run) {
       std::fill(stamp.begin(), stamp.end(), -1);
-      PhongSetup setup = setupAt({0, 0, 0});
-      VoxelWalker walk(d);
+      PhongSetup setup = setupAt(0);
       const std::size_t end = firstAtOrAfter(std::min(d[2], (run + 1) * kSlicesPerRun));
       for (std::size_t i = firstAtOrAfter(run * kSlicesPerRun); i < end; ++i) {
-        const std::array<int, 3> xyz = walk.at(voxels[i].index);
-        const int x = xyz[0], y = xyz[1], z = xyz[2];
-        if (!ortho) setup = setupAt(xyz);
+        const std::uint32_t index = voxels[i].index;
+        const int x = static_cast<int>(index % d[0]);
+        const int y = static_cast<int>(index / d[0] % d[1]);
+        const int z = static_cast<int>(index / slice);
+        if (!ortho) setup = setupAt(index);
         float shade = 0.f, highlight = 0.f;
         for (int c = 0; c < 8; ++c) {
           const int nx = x + (c & 1), ny = y + ((c >> 1) & 1), nz = z + ((c >> 2) & 1);

@@ -271,32 +271,6 @@ TEST(Splat, IdenticalBytesForOneAndTwoThreads) {
 // Direct compositing's loops are compiled for the common channel counts (channel_widths.h)
 // and for any k: both give the same bytes, over scalar (the engine) and spectral transmittance
 // and a label map, at every compiled width and one that is not.
-// Voxel coordinates by addition within a row and division elsewhere equal plain division for
-// ascending runs, row and slice ends, jumps and steps back, on grids with axes of one voxel.
-TEST(VoxelWalker, EqualsDivisionInAnyOrder) {
-  for (const Dims dims : {Dims{7, 5, 3}, Dims{1, 4, 2}, Dims{6, 1, 1}, Dims{1, 1, 1}}) {
-    const std::uint32_t n = static_cast<std::uint32_t>(dims[0] * dims[1] * dims[2]);
-    std::vector<std::uint32_t> order;
-    for (std::uint32_t i = 0; i < n; ++i) order.push_back(i);          // every voxel, ascending
-    for (std::uint32_t i = 0; i < n; i += 3) order.push_back(i);       // ascending, skipping
-    for (std::uint32_t i = n; i-- > 0;) order.push_back(i);            // descending
-    std::uint32_t state = 7u;
-    for (int m = 0; m < 200; ++m) {                                  // anywhere
-      state = state * 1664525u + 1013904223u;
-      order.push_back((state >> 8) % n);
-    }
-    splat::VoxelWalker walk(dims);
-    for (const std::uint32_t index : order) {
-      const std::array<int, 3> at = walk.at(index);
-      const int x = static_cast<int>(index % dims[0]);
-      const int y = static_cast<int>(index / dims[0] % dims[1]);
-      const int z = static_cast<int>(index / (dims[0] * dims[1]));
-      ASSERT_EQ(at, (std::array<int, 3>{x, y, z})) << dims[0] << "×" << dims[1] << "×" << dims[2]
-                                                  << ", index " << index;
-    }
-  }
-}
-
 // A splat's coefficients come from two rows of its blend table (σ_α, σ_α·s, σ_α·ρ, σ_t): the
 // same opacity-weighted blend as blendEntries over the splat's per-unit-length tables, to float
 // rounding, at every entry and between entries, for scalar and spectral transmittance and where
