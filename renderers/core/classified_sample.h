@@ -46,16 +46,26 @@ inline void blendEntries(const ClassifiedVolume& cv, const float* alpha_table,
   }
 }
 
-// Entry e as one row of a blend table, [α, α·specular, α·ρ_0 … α·ρ_{k−1}, t_0 … t_{kt−1}]
-// (2 + k + kt floats): the raycaster's sample table and the pre-classified shear-warp records.
-inline void entryRow(const ClassifiedVolume& cv, int e, float* row) {
+// Every entry as one row of a blend table, [α, α·specular, α·ρ_0 … α·ρ_{k−1}, t_0 … t_{kt−1}]
+// (2 + k + kt floats, padded with zeros to `stride`), so that blending entries is a lerp of
+// rows and the opacity weighting needs no division until the end. `alpha` and `transmission`
+// are per-entry tables: the classification's (the raycaster's sample table, the pre-classified
+// shear-warp records), shear-warp's corrected for its slice spacing, or the splats' per unit
+// length.
+inline std::vector<float> blendRows(const ClassifiedVolume& cv, const float* alpha,
+                                    const float* transmission, int stride) {
   const int k = cv.k, kt = cv.t_channels;
-  const float a = cv.alpha[e];
-  row[0] = a;
-  row[1] = a * cv.specular[e];
-  for (int c = 0; c < k; ++c) row[2 + c] = a * cv.reflectance[static_cast<std::size_t>(e) * k + c];
-  for (int c = 0; c < kt; ++c)
-    row[2 + k + c] = cv.transmission[static_cast<std::size_t>(e) * kt + c];
+  std::vector<float> rows(static_cast<std::size_t>(cv.entries) * stride, 0.f);
+  for (int e = 0; e < cv.entries; ++e) {
+    float* row = &rows[static_cast<std::size_t>(e) * stride];
+    const float a = alpha[e];
+    row[0] = a;
+    row[1] = a * cv.specular[e];
+    for (int c = 0; c < k; ++c)
+      row[2 + c] = a * cv.reflectance[static_cast<std::size_t>(e) * k + c];
+    for (int c = 0; c < kt; ++c) row[2 + k + c] = transmission[static_cast<std::size_t>(e) * kt + c];
+  }
+  return rows;
 }
 
 // A scalar value's bin coordinate in the classification table (entry + fraction, not yet

@@ -23,11 +23,8 @@ struct SampleTable {
   std::vector<float> rows;
 
   explicit SampleTable(const ClassifiedVolume& cv)
-      : stride(strideFor(2 + cv.k + cv.t_channels)) {
-    rows.assign(static_cast<std::size_t>(cv.entries) * stride, 0.f);
-    for (int e = 0; e < cv.entries; ++e)
-      entryRow(cv, e, &rows[static_cast<std::size_t>(e) * stride]);
-  }
+      : stride(strideFor(2 + cv.k + cv.t_channels)),
+        rows(blendRows(cv, cv.alpha.data(), cv.transmission.data(), stride)) {}
   // Entry e's row; kStride: the stride when known at compile time (0: use the run-time one).
   template <int kStride>
   const float* row(int e) const {

@@ -82,10 +82,7 @@ namespace {
 // the stride: a voxel's record is its bin's two entries blended (classification is linear in
 // the entries' weights), two vector lerps a voxel for rgb instead of 2 × (2 + k + kt) products.
 std::vector<float> entryRecords(const ClassifiedVolume& cv, int stride) {
-  std::vector<float> table(static_cast<std::size_t>(cv.entries) * stride, 0.f);
-  for (int e = 0; e < cv.entries; ++e)
-    entryRow(cv, e, &table[static_cast<std::size_t>(e) * stride]);
-  return table;
+  return blendRows(cv, cv.alpha.data(), cv.transmission.data(), stride);
 }
 
 // Each voxel's record: its bin's two entries' rows of `table` blended (entriesOfBin, four

@@ -28,19 +28,8 @@ struct SliceTable {
   // alpha, transmission: the classification's entries corrected for the slice spacing.
   SliceTable(const ClassifiedVolume& cv, const std::vector<float>& alpha,
              const std::vector<float>& transmission)
-      : stride(strideFor(2 + cv.k + cv.t_channels)) {
-    const int k = cv.k, kt = cv.t_channels;
-    rows.assign(static_cast<std::size_t>(cv.entries) * stride, 0.f);
-    for (int e = 0; e < cv.entries; ++e) {
-      float* row = &rows[static_cast<std::size_t>(e) * stride];
-      row[0] = alpha[e];
-      row[1] = alpha[e] * cv.specular[e];
-      for (int c = 0; c < k; ++c)
-        row[2 + c] = alpha[e] * cv.reflectance[static_cast<std::size_t>(e) * k + c];
-      for (int c = 0; c < kt; ++c)
-        row[2 + k + c] = transmission[static_cast<std::size_t>(e) * kt + c];
-    }
-  }
+      : stride(strideFor(2 + cv.k + cv.t_channels)),
+        rows(blendRows(cv, alpha.data(), transmission.data(), stride)) {}
   const float* row(int e) const { return rows.data() + static_cast<std::size_t>(e) * stride; }
 };
 

@@ -101,17 +101,7 @@ SplatList::SplatList(const ClassifiedVolume& cv, const RenderRequest& req,
   if (row_stride_ > kMaxRowStride)
     throw Error(fmt::format("splat: {} + {} channels are more than the {} a splat's blend holds",
                             k_, kt_, kMaxSplatChannels));
-  rows_.assign(static_cast<std::size_t>(cv.entries) * row_stride_, 0.f);
-  const auto sigma_alpha = voxels_->sigmaAlpha();
-  const auto sigma_t = voxels_->sigmaT();
-  for (int e = 0; e < cv.entries; ++e) {
-    float* row = &rows_[static_cast<std::size_t>(e) * row_stride_];
-    const float a = sigma_alpha[e];
-    row[0] = a;
-    row[1] = a * cv.specular[e];
-    for (int c = 0; c < k_; ++c) row[2 + c] = a * cv.reflectance[static_cast<std::size_t>(e) * k_ + c];
-    for (int c = 0; c < kt_; ++c) row[2 + k_ + c] = sigma_t[static_cast<std::size_t>(e) * kt_ + c];
-  }
+  rows_ = blendRows(cv, voxels_->sigmaAlpha().data(), voxels_->sigmaT().data(), row_stride_);
   ProjectedVoxels projected = projectVoxels(*voxels_, cv, projector, req.width, req.height);
   const auto voxels = voxels_->voxels();
   const bool any_specular = req.shading.specular > 0.0 &&

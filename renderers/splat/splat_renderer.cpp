@@ -23,7 +23,9 @@ const BackendInfo& SplatRenderer::info() const {
     return BackendInfo{"splat",
                        "Gaussian splats of the voxels, post- or pre-classified, sheet-buffer or "
                        "direct compositing",
-                       {.perspective = true, .spectral_transmittance = true, .max_channels = splat::kMaxSplatChannels},
+                       {.perspective = true,
+                        .spectral_transmittance = true,
+                        .max_channels = splat::kMaxSplatChannels},
                        std::move(options)};
   }();
   return info;
