@@ -104,12 +104,6 @@ TEST(Phong4, EachLaneEqualsPhong) {
   }
 }
 
-}  // namespace
-}  // namespace svr
-
-namespace svr {
-namespace {
-
 // The pre-classified shear-warp records find each voxel's two entries four at a time: every
 // lane gives entriesOfBin's entries and weight, bit for bit, below, across and above the table,
 // on whole bins, just under them, and for one- and two-entry tables.

@@ -9,13 +9,12 @@
 #include "renderers/core/procedural_volume.h"
 #include "renderers/scene_model.h"
 #include "renderers/raycast/raycast_renderer.h"
+#include "renderers/core/classified_sample.h"
+#include "renderers/core/scene_render.h"
 #include "renderers/core/splat_footprint.h"
 #include "renderers/core/splat_settings.h"
 #include "renderers/splat/splat_list.h"
 #include "renderers/splat/splat_renderer.h"
-#include "renderers/core/classified_sample.h"
-#include "renderers/core/scene_render.h"
-#include "renderers/core/splat_projection.h"
 #include "spectral/error.h"
 #include "spectral/image_difference.h"
 #include "tests/renderers/test_scenes.h"
@@ -268,9 +267,6 @@ TEST(Splat, IdenticalBytesForOneAndTwoThreads) {
   }
 }
 
-// Direct compositing's loops are compiled for the common channel counts (channel_widths.h)
-// and for any k: both give the same bytes, over scalar (the engine) and spectral transmittance
-// and a label map, at every compiled width and one that is not.
 // A splat's coefficients come from two rows of its blend table (σ_α, σ_α·s, σ_α·ρ, σ_t): the
 // same opacity-weighted blend as blendEntries over the splat's per-unit-length tables, to float
 // rounding, at every entry and between entries, for scalar and spectral transmittance and where
@@ -319,6 +315,9 @@ TEST(Splat, BlendTableCoefficientsEqualBlendEntries) {
     }
 }
 
+// Direct compositing's loops are compiled for the common channel counts (channel_widths.h)
+// and for any k: both give the same bytes, over scalar (the engine) and spectral transmittance
+// and a label map, at every compiled width and one that is not.
 TEST(Splat, FixedWidthDirectCompositingEqualsDynamicWidth) {
   Scene engine = loadScene(test::rendererDataDir() + "/scenes/engine.json", test::rendererLibrary());
   engine.width = engine.height = 48;
