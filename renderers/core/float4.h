@@ -41,6 +41,15 @@ typedef std::int32_t Int4 __attribute__((vector_size(16)));
 #endif
 }
 
+// Bit m set where lane m of a comparison's result is true (−1).
+[[gnu::always_inline]] inline unsigned laneMask(Int4 m) {
+#if defined(__SSE__)
+  return static_cast<unsigned>(_mm_movemask_ps(reinterpret_cast<__m128>(m)));
+#else
+  return (m[0] ? 1u : 0u) | (m[1] ? 2u : 0u) | (m[2] ? 4u : 0u) | (m[3] ? 8u : 0u);
+#endif
+}
+
 // Rows to columns: afterwards a holds the first lanes of a, b, c, d, b their second lanes, and
 // so on.
 [[gnu::always_inline]] inline void transpose4(Float4& a, Float4& b, Float4& c, Float4& d) {

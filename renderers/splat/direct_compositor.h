@@ -6,13 +6,12 @@
 
 #include "renderers/core/renderer.h"
 #include "renderers/core/splat_footprint.h"
-#include "renderers/splat/splat_list.h"
+#include "renderers/splat/splat_coverage.h"
 
 namespace svr::splat {
 
 // dynamic_width: the any-k loop even where k has a compiled width (tests: the same bytes).
-void compositeDirect(const SplatList& list, const FootprintTable& table, const Bands& bands,
-                     float termination, bool dynamic_width, LightIndependentImage& image,
-                     ProgressCounter& progress);
+void compositeDirect(const SplatCoverage& coverage, const Bands& bands, float termination,
+                     bool dynamic_width, LightIndependentImage& image, ProgressCounter& progress);
 
 }  // namespace svr::splat

@@ -9,6 +9,7 @@
 #include "renderers/core/fast_exp.h"
 #include "renderers/core/float4.h"
 #include "renderers/splat/band_state.h"
+#include "renderers/splat/splat_coverage.h"
 
 namespace svr::splat {
 namespace {
@@ -22,9 +23,8 @@ struct ActiveSplat {
   std::uint32_t id;
   float depth = 0.f;
   int xa = 0, xb = -1, ya = 0, yb = -1;
-  std::size_t chords = 0;   // offset of the rows' [lo, hi] pairs in the chord pool
-  std::size_t weights = 0;  // offset of the chords' lengths, row after row, in the pool
-  std::size_t coefs = 0;    // offset of its payload (SheetContent::payload) in the pool
+  std::size_t chords = 0;  // offset of its rows' chords in the chord pool
+  std::size_t coefs = 0;   // offset of its payload (SheetContent::payload) in the pool
   // The kernel's share below the far side of the last sheet it reached (sheet `below_sheet`),
   // which is its share below the near side of the next one.
   long below_sheet = -2;
@@ -139,19 +139,26 @@ void compositeSheet(std::vector<float>& sheet, SheetContent& content, int rx0, i
                         state);
 }
 
+// A row of an active splat: its pixels [lo, hi] and where their kernel lengths start in the pool.
+struct Chord {
+  int lo, hi;
+  std::size_t lengths;
+};
+
 // One band, sheet by sheet; the sheet buffer holds per pixel what SheetContent accumulates.
 // Splats are front to back, and every splat of one render reaches
 // the same depth either side (the kernel seen along the view axis), so they become active and
 // retire in the same order: the ones still in reach are always active[live, end).
-void compositeBand(const SplatList& list, const FootprintTable& table,
-                   std::span<const std::uint32_t> ids, double first_sheet, double thickness,
-                   bool post, BandState& state) {
+void compositeBand(const SplatCoverage& coverage, std::span<const std::uint32_t> ids,
+                   double first_sheet, double thickness, bool post, BandState& state) {
+  const SplatList& list = coverage.list();
+  const FootprintTable& table = coverage.table();
+  SplatRows rows(coverage);
   SheetContent content(list, post);
   const int stride = content.stride();
   const int width = state.width(), y0 = state.y0(), y1 = state.y1();
   std::vector<float> sheet(static_cast<std::size_t>(y1 - y0) * width * stride, 0.f);
   const auto splats = list.splats();
-  const float cut2 = table.cutoffSquared();
   const float depth_sigma = list.maxDepthSigma();
   const float depth_cut = static_cast<float>(std::min(table.cutoff(), kSheetDepthCut));
   const float reach = depth_cut * depth_sigma;
@@ -160,8 +167,8 @@ void compositeBand(const SplatList& list, const FootprintTable& table,
   };
 
   std::vector<ActiveSplat> active;  // front to back; those before `live` have retired
-  std::vector<float> pool;          // weights and payloads of the active splats
-  std::vector<int> chord_pool;      // their rows' chords
+  std::vector<float> pool;          // payloads (and evaluated lengths) of the active splats
+  std::vector<Chord> chord_pool;    // their rows' chords
   std::size_t live = 0, next = 0;   // next: the first of ids not yet active
   long j = 0;
   while (!state.allDone()) {
@@ -187,36 +194,31 @@ void compositeBand(const SplatList& list, const FootprintTable& table,
       pool.erase(pool.begin(), pool.begin() + static_cast<long>(from));
       chord_pool.erase(chord_pool.begin(), chord_pool.begin() + static_cast<long>(chords_from));
       for (ActiveSplat& a : active) {
-        a.weights -= from;
         a.coefs -= from;
         a.chords -= chords_from;
       }
+      for (Chord& c : chord_pool) c.lengths -= from;
     }
     while (next < ids.size() && splats[ids[next]].depth - reach < z1) {
       // The band's ids rise with gaps the hardware prefetcher cannot follow: ask for a later one.
       constexpr std::size_t kAhead = 8;
       if (next + kAhead < ids.size()) __builtin_prefetch(&splats[ids[next + kAhead]]);
       const Splat& s = splats[ids[next]];
-      const Footprint& fp = list.footprint(ids[next]);
       ActiveSplat a{ids[next], s.depth};
-      pixelRange(s.x, fp.half_w, width, a.xa, a.xb);
-      pixelRange(s.y, fp.half_h, y1, a.ya, a.yb);
-      a.ya = std::max(a.ya, y0);
+      const SplatRows::Box box = rows.start(ids[next]);
+      a.xa = box.xa;
+      a.xb = box.xb;
+      a.ya = std::max(box.ya, y0);
+      a.yb = std::min(box.yb, y1 - 1);
       a.coefs = pool.size();
       content.payload(s, pool);
-      a.weights = pool.size();
       a.chords = chord_pool.size();
       for (int y = a.ya; y <= a.yb; ++y) {
-        const float dy = y + 0.5f - s.y;
-        const float qy = fp.c * dy * dy, bxy = 2.f * fp.b * dy;
-        int lo, hi;
-        ellipseRow(fp, s.x, dy, cut2, a.xa, a.xb, lo, hi);
-        chord_pool.insert(chord_pool.end(), {lo, hi});
-        for (int x = lo; x <= hi; ++x) {
-          const float dx = x + 0.5f - s.x;
-          const float q = (fp.a * dx + bxy) * dx + qy;
-          pool.push_back(q < cut2 ? fp.norm * table.gaussian(q) : 0.f);
-        }
+        Chord c;
+        const float* lengths = rows.row(y, c.lo, c.hi);
+        c.lengths = pool.size();
+        if (c.lo <= c.hi) pool.insert(pool.end(), lengths, lengths + (c.hi - c.lo + 1));
+        chord_pool.push_back(c);
       }
       active.push_back(a);
       ++next;
@@ -231,17 +233,18 @@ void compositeBand(const SplatList& list, const FootprintTable& table,
       const float share = a.below_far - near;
       if (!(share > 0.f) || state.columnsDone(a.xa, a.xb)) continue;
       const float* payload = &pool[a.coefs];
-      const float* w = &pool[a.weights];
-      const int* chord = &chord_pool[a.chords];
+      const float* lengths = pool.data();
+      const Chord* chord = &chord_pool[a.chords];
       rx0 = std::min(rx0, a.xa);
       rx1 = std::max(rx1, a.xb);
       ry0 = std::min(ry0, a.ya);
       ry1 = std::max(ry1, a.yb);
       // Every pixel of the chords, finished ones too (composite() drops those), and those
       // just outside the ellipse, whose length 0 adds nothing: no test a pixel.
-      for (int y = a.ya; y <= a.yb; ++y, chord += 2) {
-        float* b = &sheet[(static_cast<std::size_t>(y - y0) * width + chord[0]) * stride];
-        for (int x = chord[0]; x <= chord[1]; ++x, ++w, b += stride)
+      for (int y = a.ya; y <= a.yb; ++y, ++chord) {
+        float* b = &sheet[(static_cast<std::size_t>(y - y0) * width + chord->lo) * stride];
+        const float* w = lengths + chord->lengths;
+        for (int x = chord->lo; x <= chord->hi; ++x, ++w, b += stride)
           content.add(payload, share * *w, b);  // the kernel's world length in this sheet
       }
     }
@@ -252,9 +255,11 @@ void compositeBand(const SplatList& list, const FootprintTable& table,
 
 }  // namespace
 
-void compositeSheets(const SplatList& list, const FootprintTable& table, const Bands& bands,
-                     double thickness, bool post, float termination, LightIndependentImage& image,
+void compositeSheets(const SplatCoverage& coverage, const Bands& bands, double thickness,
+                     bool post, float termination, LightIndependentImage& image,
                      ProgressCounter& progress) {
+  const SplatList& list = coverage.list();
+  const FootprintTable& table = coverage.table();
   const auto splats = list.splats();
   // One sheet lattice for the whole image, so neighbouring bands agree.
   const double first_sheet =
@@ -264,7 +269,7 @@ void compositeSheets(const SplatList& list, const FootprintTable& table, const B
   for (int b = 0; b < bands.count; ++b) {
     BandState state(image, b * bands.rows, std::min((b + 1) * bands.rows, image.height()),
                     termination);
-    compositeBand(list, table, bands.of(b), first_sheet, thickness, post, state);
+    compositeBand(coverage, bands.of(b), first_sheet, thickness, post, state);
     progress.advance();
   }
 }

@@ -9,12 +9,12 @@
 
 #include "renderers/core/renderer.h"
 #include "renderers/core/splat_footprint.h"
-#include "renderers/splat/splat_list.h"
+#include "renderers/splat/splat_coverage.h"
 
 namespace svr::splat {
 
-void compositeSheets(const SplatList& list, const FootprintTable& table, const Bands& bands,
-                     double thickness, bool post, float termination, LightIndependentImage& image,
+void compositeSheets(const SplatCoverage& coverage, const Bands& bands, double thickness,
+                     bool post, float termination, LightIndependentImage& image,
                      ProgressCounter& progress);
 
 }  // namespace svr::splat

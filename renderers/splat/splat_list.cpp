@@ -9,6 +9,7 @@
 
 #include "renderers/core/classified_sample.h"
 #include "renderers/core/splat_projection.h"
+#include "renderers/splat/splat_coverage.h"
 #include "spectral/error.h"
 
 namespace svr::splat {
@@ -117,6 +118,7 @@ SplatList::SplatList(const ClassifiedVolume& cv, const RenderRequest& req,
                   voxels[id].entry, voxels[id].frac, shades[id].shade, shades[id].highlight};
   }
   footprints_ = std::move(projected.footprints);
+  orthographic_ = projector.orthographic();
   for (const Footprint& fp : footprints_) max_depth_sigma_ = std::max(max_depth_sigma_, fp.depth_sigma);
 }
 
@@ -124,16 +126,28 @@ SplatList::SplatList(const ClassifiedVolume& cv, const RenderRequest& req,
 
 namespace svr::splat {
 
-Bands bandsOf(const SplatList& list, int height, int rows) {
+Bands bandsOf(const SplatCoverage& coverage, int rows) {
   Bands bands;
   bands.rows = rows;
-  bands.count = (height + rows - 1) / rows;
-  const auto splats = list.splats();
+  bands.count = (coverage.height() + rows - 1) / rows;
+  const auto splats = coverage.list().splats();
+  // The band range of each splat, from the rows its box reaches (an empty box none): computed
+  // once, for both passes.
+  std::vector<std::int32_t> first_band(splats.size()), last_band(splats.size());
+#pragma omp parallel
+  {
+    SplatRows cursor(coverage);
+#pragma omp for schedule(static)
+    for (std::size_t i = 0; i < splats.size(); ++i) {
+      const SplatRows::Box box = cursor.box(i);
+      const bool empty = box.xa > box.xb || box.ya > box.yb;
+      first_band[i] = empty ? 0 : box.ya / rows;
+      last_band[i] = empty ? -1 : box.yb / rows;
+    }
+  }
   const auto range = [&](std::size_t i, int& b0, int& b1) {
-    int lo, hi;
-    pixelRange(splats[i].y, list.footprint(i).half_h, height, lo, hi);
-    b0 = lo / rows;
-    b1 = lo > hi ? b0 - 1 : hi / rows;
+    b0 = first_band[i];
+    b1 = last_band[i];
   };
   // Counting sort by band, in splat order, so each band's list stays front to back: over fixed
   // chunks of splats, each counting its own, the offsets band by band and within a band chunk

@@ -47,6 +47,8 @@ class SplatList {
   const Footprint& footprint(std::size_t i) const {
     return footprints_.size() == 1 ? footprints_[0] : footprints_[i];
   }
+  // Whether every splat has the one footprint of an orthographic camera.
+  bool orthographic() const { return orthographic_; }
   float maxDepthSigma() const { return max_depth_sigma_; }
   int channels() const { return k_; }
   int transmittanceChannels() const { return kt_; }
@@ -95,6 +97,7 @@ class SplatList {
   int row_stride_ = 0;
   std::vector<Footprint> footprints_;  // one (orthographic) or one per splat
   float max_depth_sigma_ = 0.f;
+  bool orthographic_ = false;
 };
 
 }  // namespace svr::splat
@@ -111,7 +114,8 @@ struct Bands {
     return {splats.data() + offsets[b], offsets[b + 1] - offsets[b]};
   }
 };
-Bands bandsOf(const SplatList& list, int height, int rows);
+class SplatCoverage;
+Bands bandsOf(const SplatCoverage& coverage, int rows);
 
 // ⌊x⌋ and ⌈x⌉ as ints, for x within int range: std::floor and std::ceil are libm calls on the
 // baseline x86-64 target (no SSE4.1 rounding), four per splat row.

@@ -7,6 +7,7 @@
 #include "renderers/registry.h"
 #include "renderers/splat/direct_compositor.h"
 #include "renderers/splat/sheet_compositor.h"
+#include "renderers/splat/splat_coverage.h"
 #include "renderers/splat/splat_list.h"
 #include "spectral/error.h"
 
@@ -65,16 +66,16 @@ LightIndependentImage SplatRenderer::renderImpl(const RenderRequest& req,
   const splat::SplatList list(
       cv, req, projector,
       post ? splat::SplatVoxels::Set::kReconstruction : splat::SplatVoxels::Set::kVisible);
+  const splat::SplatCoverage coverage(list, table, req.width, req.height);
   constexpr int kBandRows = 8;
-  const splat::Bands bands = splat::bandsOf(list, req.height, kBandRows);
+  const splat::Bands bands = splat::bandsOf(coverage, kBandRows);
   const float termination = static_cast<float>(req.termination);
   if (settings.mode == splat::SplatSettings::Mode::kSheet) {
     const double min_spacing = std::min({cv.spacing.x, cv.spacing.y, cv.spacing.z});
     const double thickness = settings.sheet_voxels * min_spacing;
-    splat::compositeSheets(list, table, bands, thickness, post, termination, image, progress);
+    splat::compositeSheets(coverage, bands, thickness, post, termination, image, progress);
   } else {
-    splat::compositeDirect(list, table, bands, termination, force_.dynamic_width, image,
-                           progress);
+    splat::compositeDirect(coverage, bands, termination, force_.dynamic_width, image, progress);
   }
   return image;
 }
