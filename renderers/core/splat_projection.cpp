@@ -1,6 +1,7 @@
 #include "renderers/core/splat_projection.h"
 
 #include <bit>
+#include <utility>
 
 namespace svr::splat {
 
@@ -11,48 +12,82 @@ glm::dvec3 voxelWorld(const ClassifiedVolume& cv, std::uint32_t index) {
   return (glm::dvec3(x, y, z) - centre) * cv.spacing;
 }
 
-ProjectedVoxels projectVoxels(const SplatVoxels& voxels, const ClassifiedVolume& cv,
-                              const Projector& projector, int width, int height) {
+void projectInListOrder(const SplatVoxels& voxels, const ClassifiedVolume& cv,
+                        const Projector& projector, int width, int height, VoxelProjection& out) {
   const auto list = voxels.voxels();
   const bool ortho = projector.orthographic();
   const Footprint any = projector.footprint(glm::dvec3(0.0));
   const std::size_t total = list.size();
-  std::vector<float> depth(total);
-  std::vector<glm::vec2> position(total);
-  std::vector<Footprint> footprint(ortho ? 0 : total);
-  std::vector<std::uint8_t> keep(total);
+  out.depth.resize(total);
+  out.position.resize(total);
+  out.footprints.resize(ortho ? 1 : total);
+  if (ortho) out.footprints[0] = any;
+  std::vector<std::uint8_t>& keep = out.keep;
+  keep.resize(total);
+  // An orthographic projection is affine in the voxel's grid coordinates: the image of the
+  // first voxel plus a step per axis (in double, so the positions equal project()'s to well
+  // within float rounding), where project() took a world position from three divisions.
+  const Dims& d = cv.dims;
+  const glm::dvec3 origin = projector.project(voxelWorld(cv, 0));
+  const glm::dvec3 step[3] = {
+      d[0] > 1 ? projector.project(voxelWorld(cv, 1)) - origin : glm::dvec3(0.0),
+      d[1] > 1 ? projector.project(voxelWorld(cv, d[0])) - origin : glm::dvec3(0.0),
+      d[2] > 1 ? projector.project(voxelWorld(cv, d[0] * d[1])) - origin : glm::dvec3(0.0)};
+  const std::uint32_t nx = d[0], nxy = d[0] * d[1];
 #pragma omp parallel for schedule(static)
   for (std::size_t i = 0; i < total; ++i) {
-    const glm::dvec3 world = voxelWorld(cv, list[i].index);
-    const glm::dvec3 pos = projector.project(world);
-    const Footprint fp = ortho ? any : projector.footprint(world);
+    const std::uint32_t index = list[i].index;
+    glm::dvec3 pos;
+    Footprint fp = any;
+    if (ortho) {
+      const std::uint32_t z = index / nxy, rest = index - z * nxy, y = rest / nx, x = rest - y * nx;
+      pos = origin + static_cast<double>(x) * step[0] + static_cast<double>(y) * step[1] +
+            static_cast<double>(z) * step[2];
+    } else {
+      const glm::dvec3 world = voxelWorld(cv, index);
+      pos = projector.project(world);
+      fp = projector.footprint(world);
+      out.footprints[i] = fp;
+    }
     keep[i] = (ortho || pos.z > 0.0) && !(pos.x + fp.half_w < 0 || pos.x - fp.half_w > width ||
                                           pos.y + fp.half_h < 0 || pos.y - fp.half_h > height);
-    depth[i] = static_cast<float>(pos.z);
-    position[i] = {static_cast<float>(pos.x), static_cast<float>(pos.y)};
-    if (!ortho) footprint[i] = fp;
+    out.depth[i] = static_cast<float>(pos.z);
+    out.position[i] = {static_cast<float>(pos.x), static_cast<float>(pos.y)};
   }
+  keptIndices(keep, out.order);
+  sortByDepth(out.order, out.depth, out.sort);
+}
+
+ProjectedVoxels projectVoxels(const SplatVoxels& voxels, const ClassifiedVolume& cv,
+                              const Projector& projector, int width, int height) {
+  VoxelProjection projection;
+  projectInListOrder(voxels, cv, projector, width, height, projection);
   ProjectedVoxels out;
-  out.ids = keptIndices(keep);
-  sortByDepth(out.ids, depth);
+  out.ids = std::move(projection.order);
   const std::size_t n = out.ids.size();
+  const bool ortho = projection.footprints.size() == 1;
   out.position.resize(n);
   out.depth.resize(n);
-  if (ortho) out.footprints = {any};
+  if (ortho) out.footprints = {projection.footprints[0]};
   else out.footprints.resize(n);
 #pragma omp parallel for schedule(static)
   for (std::size_t i = 0; i < n; ++i) {
     const std::uint32_t id = out.ids[i];
-    out.position[i] = position[id];
-    out.depth[i] = depth[id];
-    if (!ortho) out.footprints[i] = footprint[id];
+    out.position[i] = projection.position[id];
+    out.depth[i] = projection.depth[id];
+    if (!ortho) out.footprints[i] = projection.footprints[id];
   }
   return out;
 }
 
-void sortByDepth(std::vector<std::uint32_t>& ids, const std::vector<float>& key) {
+void sortByDepth(std::vector<std::uint32_t>& ids, const std::vector<float>& key,
+                 DepthSortScratch& scratch) {
   const std::size_t n = ids.size();
-  std::vector<std::uint32_t> bits(n), other_ids(n), other_bits(n);
+  std::vector<std::uint32_t>&bits = scratch.bits, &other_ids = scratch.other_ids,
+                             &other_bits = scratch.other_bits;
+  bits.resize(n);
+  other_ids.resize(n);
+  other_bits.resize(n);
 #pragma omp parallel for schedule(static)
   for (std::size_t i = 0; i < n; ++i) {
     const float k = key[ids[i]] == 0.f ? 0.f : key[ids[i]];  // −0 sorts with +0
@@ -64,7 +99,8 @@ void sortByDepth(std::vector<std::uint32_t>& ids, const std::vector<float>& key)
   // then scatters its own keys in order.
   constexpr int kDigits = 2048;
   const FixedChunks chunks(n);
-  std::vector<std::size_t> offset(chunks.count * kDigits);
+  std::vector<std::size_t>& offset = scratch.offsets;
+  offset.resize(chunks.count * kDigits);
   for (int shift = 0; shift < 32; shift += 11) {
     std::fill(offset.begin(), offset.end(), 0);
 #pragma omp parallel for schedule(static)
@@ -90,21 +126,20 @@ void sortByDepth(std::vector<std::uint32_t>& ids, const std::vector<float>& key)
   }
 }
 
-std::vector<std::uint32_t> keptIndices(const std::vector<std::uint8_t>& keep) {
+void keptIndices(const std::vector<std::uint8_t>& keep, std::vector<std::uint32_t>& ids) {
   const FixedChunks chunks(keep.size());
   std::vector<std::size_t> start(chunks.count + 1, 0);
 #pragma omp parallel for schedule(static)
   for (std::size_t c = 0; c < chunks.count; ++c)
     for (std::size_t i = chunks.begin(c); i < chunks.end(c); ++i) start[c + 1] += keep[i];
   for (std::size_t c = 0; c < chunks.count; ++c) start[c + 1] += start[c];
-  std::vector<std::uint32_t> ids(start[chunks.count]);
+  ids.resize(start[chunks.count]);
 #pragma omp parallel for schedule(static)
   for (std::size_t c = 0; c < chunks.count; ++c) {
     std::size_t to = start[c];
     for (std::size_t i = chunks.begin(c); i < chunks.end(c); ++i)
       if (keep[i]) ids[to++] = static_cast<std::uint32_t>(i);
   }
-  return ids;
 }
 
 }  // namespace svr::splat

@@ -147,15 +147,7 @@ LightIndependentImage ShearWarpRenderer::renderImpl(const RenderRequest& req,
   const glm::dvec3 light = req.light_direction ? glm::normalize(*req.light_direction) : view_dir;
   const glm::dvec3 half = glm::normalize(light + view_dir);
 
-  std::unique_ptr<shearwarp::IntermediateImage> pooled;
-  {
-    const std::lock_guard lock(pool_mutex_);
-    if (!pool_.empty()) {
-      pooled = std::move(pool_.back());
-      pool_.pop_back();
-    }
-  }
-  if (!pooled) pooled = std::make_unique<shearwarp::IntermediateImage>();
+  const auto pooled = pool_.take();
   pooled->resize(view.width, view.height, cv.k, cv.t_channels);  // each band clears its rows
   shearwarp::IntermediateImage& intermediate = *pooled;
   shearwarp::CompositeJob job{&cv,
@@ -207,8 +199,6 @@ LightIndependentImage ShearWarpRenderer::renderImpl(const RenderRequest& req,
     image = LightIndependentImage(req.width, req.height, cv.k, cv.t_channels);
     shearwarp::warpToFinal(intermediate, view, image);
   }
-  const std::lock_guard lock(pool_mutex_);
-  pool_.push_back(std::move(pooled));
   return image;
 }
 

@@ -16,11 +16,8 @@
 // only (bilinear in a slice, none between slices), the sample spacing grows towards 45°, the
 // principal axis switches (and the image pops) at 45°, and zooming in blurs.
 
-#include <memory>
-#include <mutex>
-#include <vector>
-
 #include "renderers/core/renderer.h"
+#include "renderers/core/reuse_pool.h"
 #include "spectral/relight_kernel.h"
 
 namespace svr {
@@ -49,12 +46,10 @@ class ShearWarpRenderer final : public Renderer {
   ~ShearWarpRenderer() override;
 
  private:
-  // Intermediate images of finished frames, reused by the next ones (allocating and zeroing a
-  // fresh one cost about 16 ns per output pixel, some 10 of 37 ms at 800²). One per render
-  // running at a time on this instance.
   KernelForce force_;
-  mutable std::mutex pool_mutex_;
-  mutable std::vector<std::unique_ptr<shearwarp::IntermediateImage>> pool_;
+  // Intermediate images of finished frames, reused by the next ones (allocating and zeroing a
+  // fresh one cost about 16 ns per output pixel, some 10 of 37 ms at 800²).
+  mutable ReusePool<shearwarp::IntermediateImage> pool_;
 };
 
 }  // namespace svr

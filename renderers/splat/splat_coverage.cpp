@@ -32,9 +32,13 @@ SplatRows::Box SplatRows::box(std::size_t i) const {
 SplatRows::Box SplatRows::start(std::size_t i) {
   splat_ = &cov_.list().splats()[i];
   fp_ = &cov_.list().footprint(i);
-  const Box box = this->box(i);
-  box_ = box;
-  if (!factors_ || box.xa > box.xb || box.ya > box.yb) return box;
+  box_ = box(i);
+  prepared_ = false;
+  return box_;
+}
+
+void SplatRows::prepareFactors() {
+  prepared_ = true;
   // The phases, and the splat's factors (footprint_factors.h): Px^I for the columns and
   // norm · Py^J · exp(−q(fx, fy)/2) for the rows, as powers of one vector of exponentials, with
   // their terms of q.
@@ -64,7 +68,6 @@ SplatRows::Box SplatRows::start(std::size_t i) {
          column_q_.data(), column_.size());
   powers(fp.norm * e[2], e[3], 2.f * static_cast<float>(ry) * gy + q_phase, -2.f * gy,
          row_.data(), row_q_.data(), row_.size());
-  return box;
 }
 
 const float* SplatRows::row(int y, int& lo, int& hi) {
@@ -72,6 +75,7 @@ const float* SplatRows::row(int y, int& lo, int& hi) {
 }
 
 const float* SplatRows::factoredRow(int y, int& lo, int& hi) {
+  if (!prepared_) prepareFactors();
   const int r = y - y0_, first = box_.xa - x0_, n = box_.xb - box_.xa + 1;
   const float* lengths = factors_->lengths(r) + first;
   const float* table_q = factors_->q(r) + first;

@@ -59,6 +59,9 @@ class SplatRows {
   const float* row(int y, int& lo, int& hi);
 
  private:
+  // The splat's column and row factors, on its first row: a splat over finished pixels
+  // needs none.
+  void prepareFactors();
   const float* factoredRow(int y, int& lo, int& hi);
   const float* evaluatedRow(int y, int& lo, int& hi);
 
@@ -70,6 +73,7 @@ class SplatRows {
   Box box_{};
   // Factored: the pixel of column 0 and row 0, and the splat's column and row factors and terms.
   int x0_ = 0, y0_ = 0;
+  bool prepared_ = false;
   std::vector<float> column_, column_q_, row_, row_q_;
   std::vector<float> scratch_;
 };

@@ -16,10 +16,6 @@ namespace svr::splat {
 
 namespace {
 
-struct VoxelShade {
-  float shade, highlight;
-};
-
 // The shade of every listed voxel, in list (voxel index) order: the mean of the Phong terms at
 // the cell's 8 corners — the raycaster's Phong at the dual-grid nodes — not the shade at its
 // centre (near a boundary those differ, and the centre alone is too bright). The list is cut into
@@ -28,13 +24,11 @@ struct VoxelShade {
 // node shared by up to 8 voxels is shaded once per run; in index order the cell means are read
 // nearly in sequence. A perspective camera's view direction differs per voxel, and each voxel
 // shades its own corners.
-std::vector<VoxelShade> shadeVoxels(const SplatVoxels& sv, const ClassifiedVolume& cv,
-                                    const RenderRequest& req, const Projector& projector,
-                                    bool any_specular) {
+void shadeVoxels(const SplatVoxels& sv, const ClassifiedVolume& cv, const RenderRequest& req,
+                 const Projector& projector, bool any_specular, std::span<Splat> out) {
   const auto voxels = sv.voxels();
   const Dims& d = cv.dims;
   const bool ortho = projector.orthographic();
-  std::vector<VoxelShade> out(voxels.size());
   const auto setupAt = [&](std::uint32_t index) {
     const glm::dvec3 view = projector.towardsEye(voxelWorld(cv, index));
     const glm::dvec3 light = req.light_direction ? *req.light_direction : view;
@@ -86,39 +80,60 @@ std::vector<VoxelShade> shadeVoxels(const SplatVoxels& sv, const ClassifiedVolum
           shade += t.shade;
           highlight += t.highlight;
         }
-        out[i] = {shade * 0.125f, highlight * 0.125f};
+        out[i].shade = shade * 0.125f;
+        out[i].highlight = highlight * 0.125f;
       }
     }
   }
-  return out;
 }
 
 }  // namespace
 
 SplatList::SplatList(const ClassifiedVolume& cv, const RenderRequest& req,
-                     const Projector& projector, SplatVoxels::Set set)
-    : cv_(cv), voxels_(SplatVoxels::of(cv, set)), k_(cv.k), kt_(cv.t_channels) {
+                     const Projector& projector, SplatVoxels::Set set, SplatListMemory& memory)
+    : cv_(cv),
+      voxels_(SplatVoxels::of(cv, set)),
+      k_(cv.k),
+      kt_(cv.t_channels),
+      splats_(memory.splats),
+      footprints_(memory.footprints) {
   row_stride_ = (2 + k_ + kt_ + 3) / 4 * 4;
   if (row_stride_ > kMaxRowStride)
     throw Error(fmt::format("splat: {} + {} channels are more than the {} a splat's blend holds",
                             k_, kt_, kMaxSplatChannels));
   rows_ = blendRows(cv, voxels_->sigmaAlpha().data(), voxels_->sigmaT().data(), row_stride_);
-  ProjectedVoxels projected = projectVoxels(*voxels_, cv, projector, req.width, req.height);
+  VoxelProjection& projected = memory.projection;
+  projectInListOrder(*voxels_, cv, projector, req.width, req.height, projected);
   const auto voxels = voxels_->voxels();
   const bool any_specular = req.shading.specular > 0.0 &&
                             std::any_of(cv.specular.begin(), cv.specular.end(),
                                         [](float s) { return s > 0.f; });
-  const std::vector<VoxelShade> shades = shadeVoxels(*voxels_, cv, req, projector, any_specular);
-  const std::size_t n = projected.ids.size();
+  // Each voxel's splat in list order, written in sequence; then one gather into depth order,
+  // one record a splat, where gathering each of its parts read four places at random.
+  std::vector<Splat>& in_list_order = memory.in_list_order;
+  in_list_order.resize(voxels.size());
+  shadeVoxels(*voxels_, cv, req, projector, any_specular, in_list_order);
+#pragma omp parallel for schedule(static)
+  for (std::size_t i = 0; i < voxels.size(); ++i) {
+    Splat& s = in_list_order[i];
+    s.x = projected.position[i].x;
+    s.y = projected.position[i].y;
+    s.depth = projected.depth[i];
+    s.entry = voxels[i].entry;
+    s.frac = voxels[i].frac;
+  }
+  const std::size_t n = projected.order.size();
+  const bool ortho = projector.orthographic();
   splats_.resize(n);
+  footprints_.resize(ortho ? 1 : n);
+  if (ortho) footprints_[0] = projected.footprints[0];
 #pragma omp parallel for schedule(static)
   for (std::size_t i = 0; i < n; ++i) {
-    const std::uint32_t id = projected.ids[i];
-    splats_[i] = {projected.position[i].x, projected.position[i].y, projected.depth[i],
-                  voxels[id].entry, voxels[id].frac, shades[id].shade, shades[id].highlight};
+    const std::uint32_t id = projected.order[i];
+    splats_[i] = in_list_order[id];
+    if (!ortho) footprints_[i] = projected.footprints[id];
   }
-  footprints_ = std::move(projected.footprints);
-  orthographic_ = projector.orthographic();
+  orthographic_ = ortho;
   for (const Footprint& fp : footprints_) max_depth_sigma_ = std::max(max_depth_sigma_, fp.depth_sigma);
 }
 
@@ -126,14 +141,15 @@ SplatList::SplatList(const ClassifiedVolume& cv, const RenderRequest& req,
 
 namespace svr::splat {
 
-Bands bandsOf(const SplatCoverage& coverage, int rows) {
-  Bands bands;
+void bandsOf(const SplatCoverage& coverage, int rows, Bands& bands) {
   bands.rows = rows;
   bands.count = (coverage.height() + rows - 1) / rows;
   const auto splats = coverage.list().splats();
   // The band range of each splat, from the rows its box reaches (an empty box none): computed
   // once, for both passes.
-  std::vector<std::int32_t> first_band(splats.size()), last_band(splats.size());
+  std::vector<std::int32_t>&first_band = bands.first, &last_band = bands.last;
+  first_band.resize(splats.size());
+  last_band.resize(splats.size());
 #pragma omp parallel
   {
     SplatRows cursor(coverage);
@@ -182,7 +198,6 @@ Bands bandsOf(const SplatCoverage& coverage, int rows) {
       for (int b = b0; b <= b1; ++b)
         bands.splats[offset[c * nb + b]++] = static_cast<std::uint32_t>(i);
     }
-  return bands;
 }
 
 }  // namespace svr::splat

@@ -15,6 +15,7 @@
 #include "renderers/core/classified_sample.h"
 #include "renderers/core/renderer.h"
 #include "renderers/core/splat_footprint.h"
+#include "renderers/core/splat_projection.h"
 #include "renderers/core/splat_voxels.h"
 
 namespace svr::splat {
@@ -39,10 +40,20 @@ struct SplatCoefficients {
   std::span<float> colour;   // k: ρ·shade + white·highlight
 };
 
+// The arrays a frame's list takes, kept by the renderer for its next frame (reuse_pool.h): the
+// voxels' projections and depth order, their splats in list order, and the splats in depth
+// order with their footprints (the list's own).
+struct SplatListMemory {
+  VoxelProjection projection;
+  std::vector<Splat> in_list_order, splats;
+  std::vector<Footprint> footprints;
+};
+
 class SplatList {
  public:
+  // Valid while `memory` is.
   SplatList(const ClassifiedVolume& volume, const RenderRequest& request,
-            const Projector& projector, SplatVoxels::Set set);
+            const Projector& projector, SplatVoxels::Set set, SplatListMemory& memory);
   std::span<const Splat> splats() const { return splats_; }
   const Footprint& footprint(std::size_t i) const {
     return footprints_.size() == 1 ? footprints_[0] : footprints_[i];
@@ -92,10 +103,10 @@ class SplatList {
   const ClassifiedVolume& cv_;
   std::shared_ptr<const SplatVoxels> voxels_;
   int k_, kt_;
-  std::vector<Splat> splats_;
+  std::vector<Splat>& splats_;
   std::vector<float> rows_;  // the blend table, row_stride_ floats an entry
   int row_stride_ = 0;
-  std::vector<Footprint> footprints_;  // one (orthographic) or one per splat
+  std::vector<Footprint>& footprints_;  // one (orthographic) or one per splat
   float max_depth_sigma_ = 0.f;
   bool orthographic_ = false;
 };
@@ -110,12 +121,20 @@ struct Bands {
   int rows = 8, count = 0;
   std::vector<std::size_t> offsets;   // count + 1
   std::vector<std::uint32_t> splats;  // band b: splats[offsets[b] .. offsets[b + 1])
+  std::vector<std::int32_t> first, last;  // working arrays: each splat's first and last band
   std::span<const std::uint32_t> of(int b) const {
     return {splats.data() + offsets[b], offsets[b + 1] - offsets[b]};
   }
 };
 class SplatCoverage;
-Bands bandsOf(const SplatCoverage& coverage, int rows);
+// Fills `bands` (its arrays reused from an earlier frame where it has them).
+void bandsOf(const SplatCoverage& coverage, int rows, Bands& bands);
+
+// All a splat frame allocates, for the renderer's ReusePool.
+struct SplatFrameMemory {
+  SplatListMemory list;
+  Bands bands;
+};
 
 // ⌊x⌋ and ⌈x⌉ as ints, for x within int range: std::floor and std::ceil are libm calls on the
 // baseline x86-64 target (no SSE4.1 rounding), four per splat row.

@@ -63,12 +63,15 @@ LightIndependentImage SplatRenderer::renderImpl(const RenderRequest& req,
                                    settings.kernel);
   const splat::FootprintTable table(settings.kernel.cutoff());
   const bool post = postClassified(options, settings, cv);
+  const auto memory = pool_.take();
   const splat::SplatList list(
       cv, req, projector,
-      post ? splat::SplatVoxels::Set::kReconstruction : splat::SplatVoxels::Set::kVisible);
+      post ? splat::SplatVoxels::Set::kReconstruction : splat::SplatVoxels::Set::kVisible,
+      memory->list);
   const splat::SplatCoverage coverage(list, table, req.width, req.height);
-  constexpr int kBandRows = 8;
-  const splat::Bands bands = splat::bandsOf(coverage, kBandRows);
+  constexpr int kBandRows = 16;
+  splat::Bands& bands = memory->bands;
+  splat::bandsOf(coverage, kBandRows, bands);
   const float termination = static_cast<float>(req.termination);
   if (settings.mode == splat::SplatSettings::Mode::kSheet) {
     const double min_spacing = std::min({cv.spacing.x, cv.spacing.y, cv.spacing.z});
@@ -79,6 +82,9 @@ LightIndependentImage SplatRenderer::renderImpl(const RenderRequest& req,
   }
   return image;
 }
+
+SplatRenderer::SplatRenderer(KernelForce force) : force_(force) {}
+SplatRenderer::~SplatRenderer() = default;
 
 namespace backends {
 BackendEntry splat() { return {SplatRenderer().info(), [] { return std::make_unique<SplatRenderer>(); }, {}, {}}; }

@@ -8,14 +8,19 @@
 // (`svr render --help-options splat`).
 
 #include "renderers/core/renderer.h"
+#include "renderers/core/reuse_pool.h"
 #include "spectral/relight_kernel.h"
 
 namespace svr {
+namespace splat {
+struct SplatFrameMemory;
+}
 
 class SplatRenderer final : public Renderer {
  public:
   // force.dynamic_width: the any-k compositing loops (tests); the splats have one instruction set.
-  explicit SplatRenderer(KernelForce force = {}) : force_(force) {}
+  explicit SplatRenderer(KernelForce force = {});
+  ~SplatRenderer() override;
   const BackendInfo& info() const override;
 
  protected:
@@ -24,6 +29,9 @@ class SplatRenderer final : public Renderer {
 
  private:
   KernelForce force_;
+  // The arrays of finished frames (projections, sort keys, splat and band lists), reused by the
+  // next ones.
+  mutable ReusePool<splat::SplatFrameMemory> pool_;
 };
 
 }  // namespace svr

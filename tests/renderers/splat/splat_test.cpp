@@ -283,7 +283,8 @@ TEST(Splat, BlendTableCoefficientsEqualBlendEntries) {
       const splat::Projector projector(req.camera, req.width, req.height, cv.spacing,
                                        splat::splatSettings(readBackendOptions(
                                            splat::splatOptionSpecs(), {}, "splat")).kernel);
-      const splat::SplatList list(cv, req, projector, splat::SplatVoxels::Set::kVisible);
+      splat::SplatListMemory memory;
+      const splat::SplatList list(cv, req, projector, splat::SplatVoxels::Set::kVisible, memory);
       const auto voxels = splat::SplatVoxels::of(cv, splat::SplatVoxels::Set::kVisible);
       const int kt = cv.t_channels;
       std::vector<float> sigma_t(kt), colour(k), ref_refl(k), ref_t(kt);
