@@ -210,9 +210,17 @@ void compositeBand(const SplatCoverage& coverage, std::span<const std::uint32_t>
       a.xb = box.xb;
       a.ya = std::max(box.ya, y0);
       a.yb = std::min(box.yb, y1 - 1);
+      // A splat over finished pixels adds nothing: it stays in the list (retiring in order)
+      // with an empty box, and its rows are never evaluated.
+      if (a.xa <= a.xb && a.ya <= a.yb && state.columnsDone(a.xa, a.xb)) a.xb = a.xa - 1;
       a.coefs = pool.size();
-      content.payload(s, pool);
       a.chords = chord_pool.size();
+      if (a.xa > a.xb || a.ya > a.yb) {
+        active.push_back(a);
+        ++next;
+        continue;
+      }
+      content.payload(s, pool);
       for (int y = a.ya; y <= a.yb; ++y) {
         Chord c;
         const float* lengths = rows.row(y, c.lo, c.hi);
