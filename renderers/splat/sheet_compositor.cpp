@@ -25,6 +25,8 @@ struct ActiveSplat {
   int xa = 0, xb = -1, ya = 0, yb = -1;
   std::size_t chords = 0;  // offset of its rows' chords in the chord pool
   std::size_t coefs = 0;   // offset of its payload (SheetContent::payload) in the pool
+  // Sheet j's near side in the kernel's σ along the view axis: t0 + j · (thickness / σ).
+  double t0 = 0.0;
   // The kernel's share below the far side of the last sheet it reached (sheet `below_sheet`),
   // which is its share below the near side of the next one.
   long below_sheet = -2;
@@ -165,6 +167,7 @@ void compositeBand(const SplatCoverage& coverage, std::span<const std::uint32_t>
   const auto below = [&](double t) {
     return t <= -depth_cut ? 0.f : t >= depth_cut ? 1.f : table.cdf(static_cast<float>(t));
   };
+  const double sheet_sigmas = thickness / depth_sigma;  // a sheet's thickness in σ
 
   std::vector<ActiveSplat> active;  // front to back; those before `live` have retired
   std::vector<float> pool;          // payloads (and evaluated lengths) of the active splats
@@ -205,6 +208,7 @@ void compositeBand(const SplatCoverage& coverage, std::span<const std::uint32_t>
       if (next + kAhead < ids.size()) __builtin_prefetch(&splats[ids[next + kAhead]]);
       const Splat& s = splats[ids[next]];
       ActiveSplat a{ids[next], s.depth};
+      a.t0 = (first_sheet - s.depth) / depth_sigma;
       const SplatRows::Box box = rows.start(ids[next]);
       a.xa = box.xa;
       a.xb = box.xb;
@@ -235,8 +239,9 @@ void compositeBand(const SplatCoverage& coverage, std::span<const std::uint32_t>
     for (std::size_t i = live; i < active.size(); ++i) {
       ActiveSplat& a = active[i];
       if (a.xa > a.xb || a.ya > a.yb) continue;
-      const float near = a.below_sheet == j - 1 ? a.below_far : below((z0 - a.depth) / depth_sigma);
-      a.below_far = below((z1 - a.depth) / depth_sigma);
+      // Both sides by the same formula (a sheet's far side is the next one's near side).
+      const float near = a.below_sheet == j - 1 ? a.below_far : below(a.t0 + j * sheet_sigmas);
+      a.below_far = below(a.t0 + (j + 1) * sheet_sigmas);
       a.below_sheet = j;
       const float share = a.below_far - near;
       if (!(share > 0.f) || state.columnsDone(a.xa, a.xb)) continue;
@@ -252,8 +257,15 @@ void compositeBand(const SplatCoverage& coverage, std::span<const std::uint32_t>
       for (int y = a.ya; y <= a.yb; ++y, ++chord) {
         float* b = &sheet[(static_cast<std::size_t>(y - y0) * width + chord->lo) * stride];
         const float* w = lengths + chord->lengths;
-        for (int x = chord->lo; x <= chord->hi; ++x, ++w, b += stride)
-          content.add(payload, share * *w, b);  // the kernel's world length in this sheet
+        if (post) {
+          // SheetContent::add's post-classified case, its payload held in one register.
+          const Float4 p = load4(payload);
+          for (int x = chord->lo; x <= chord->hi; ++x, ++w, b += 4)
+            store4(b, load4(b) + (share * *w) * p);
+        } else {
+          for (int x = chord->lo; x <= chord->hi; ++x, ++w, b += stride)
+            content.add(payload, share * *w, b);  // the kernel's world length in this sheet
+        }
       }
     }
     compositeSheet(sheet, content, rx0, rx1, ry0, ry1, state);
