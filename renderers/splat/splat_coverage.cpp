@@ -20,14 +20,6 @@ SplatRows::SplatRows(const SplatCoverage& coverage)
   }
 }
 
-SplatRows::Box SplatRows::box(std::size_t i) const {
-  const Splat& s = cov_.list().splats()[i];
-  const Footprint& fp = cov_.list().footprint(i);
-  Box box;
-  pixelRange(s.x, fp.half_w, cov_.width(), box.xa, box.xb);
-  pixelRange(s.y, fp.half_h, cov_.height(), box.ya, box.yb);
-  return box;
-}
 
 SplatRows::Box SplatRows::start(std::size_t i) {
   splat_ = &cov_.list().splats()[i];
@@ -70,39 +62,7 @@ void SplatRows::prepareFactors() {
          row_.data(), row_q_.data(), row_.size());
 }
 
-const float* SplatRows::row(int y, int& lo, int& hi) {
-  return factors_ ? factoredRow(y, lo, hi) : evaluatedRow(y, lo, hi);
-}
 
-const float* SplatRows::factoredRow(int y, int& lo, int& hi) {
-  if (!prepared_) prepareFactors();
-  const int r = y - y0_, first = box_.xa - x0_, n = box_.xb - box_.xa + 1;
-  const float* lengths = factors_->lengths(r) + first;
-  const float* table_q = factors_->q(r) + first;
-  const float* column = column_.data() + first;
-  const float* column_q = column_q_.data() + first;
-  const float row = row_[r], row_q = row_q_[r];
-  const Float4 cut2 = splat4(cut2_), zero = splat4(0.f);
-  float* out = scratch_.data();
-  int a = n, b = -1;  // the first and last columns inside the ellipse
-  for (int i = 0; i < n; i += 4) {
-    const Float4 q = (load4(table_q + i) + load4(column_q + i)) + row_q;
-    const Float4 w = load4(lengths + i) * load4(column + i) * row;
-    const Int4 inside = q < cut2;
-    store4(out + i, inside ? w : zero);
-    const unsigned lanes = laneMask(inside);
-    if (lanes == 0) continue;
-    a = std::min(a, i + std::countr_zero(lanes));
-    b = i + 31 - std::countl_zero(lanes);
-  }
-  // Columns past the box are outside the ellipse unless the image's edge cut the box; then
-  // hi is at that edge and nothing reads past it.
-  b = std::min(b, n - 1);
-  lo = box_.xa + a;
-  hi = box_.xa + b;
-  std::fill_n(out + b + 1, 3, 0.f);
-  return out + std::min(a, n);
-}
 
 const float* SplatRows::evaluatedRow(int y, int& lo, int& hi) {
   const Footprint& fp = *fp_;
