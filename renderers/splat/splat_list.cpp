@@ -55,16 +55,29 @@ void shadeVoxels(const SplatVoxels& sv, const ClassifiedVolume& cv, const Render
       std::fill(stamp.begin(), stamp.end(), -1);
       PhongSetup setup = setupAt(0);
       const std::size_t end = firstAtOrAfter(std::min(d[2], (run + 1) * kSlicesPerRun));
-      for (std::size_t i = firstAtOrAfter(run * kSlicesPerRun); i < end; ++i) {
+      // The corners' terms, c = x + 2y + 4z; the previous voxel's, where it is this one's left
+      // neighbour in the row, give this one's left face (an orthographic camera's terms are
+      // the node's alone).
+      PhongTerms terms[8];
+      std::uint32_t previous = 0;
+      int x = 0, y = 0, z = 0;
+      const std::size_t first = firstAtOrAfter(run * kSlicesPerRun);
+      for (std::size_t i = first; i < end; ++i) {
         const std::uint32_t index = voxels[i].index;
-        const int x = static_cast<int>(index % d[0]);
-        const int y = static_cast<int>(index / d[0] % d[1]);
-        const int z = static_cast<int>(index / slice);
+        const bool follows = ortho && i != first && index == previous + 1 && x + 1 < d[0];
+        previous = index;
+        if (follows) {
+          ++x;
+          for (int c = 0; c < 8; c += 2) terms[c] = terms[c + 1];
+        } else {
+          x = static_cast<int>(index % d[0]);
+          y = static_cast<int>(index / d[0] % d[1]);
+          z = static_cast<int>(index / slice);
+        }
         if (!ortho) setup = setupAt(index);
-        float shade = 0.f, highlight = 0.f;
-        for (int c = 0; c < 8; ++c) {
+        for (int c = follows ? 1 : 0; c < 8; c += follows ? 2 : 1) {
           const int nx = x + (c & 1), ny = y + ((c >> 1) & 1), nz = z + ((c >> 2) & 1);
-          PhongTerms t;
+          PhongTerms& t = terms[c];
           const std::size_t at = (nz & 1) * plane + static_cast<std::size_t>(ny) * (d[0] + 1) + nx;
           if (ortho && stamp[at] == nz) {
             t = node_terms[at];
@@ -77,8 +90,11 @@ void shadeVoxels(const SplatVoxels& sv, const ClassifiedVolume& cv, const Render
               stamp[at] = nz;
             }
           }
-          shade += t.shade;
-          highlight += t.highlight;
+        }
+        float shade = 0.f, highlight = 0.f;
+        for (int c = 0; c < 8; ++c) {
+          shade += terms[c].shade;
+          highlight += terms[c].highlight;
         }
         out[i].shade = shade * 0.125f;
         out[i].highlight = highlight * 0.125f;
