@@ -88,25 +88,35 @@ void sortByDepth(std::vector<std::uint32_t>& ids, const std::vector<float>& key,
   bits.resize(n);
   other_ids.resize(n);
   other_bits.resize(n);
-#pragma omp parallel for schedule(static)
+  std::uint32_t lowest = ~0u, highest = 0;
+#pragma omp parallel for schedule(static) reduction(min : lowest) reduction(max : highest)
   for (std::size_t i = 0; i < n; ++i) {
     const float k = key[ids[i]] == 0.f ? 0.f : key[ids[i]];  // −0 sorts with +0
     const std::uint32_t u = std::bit_cast<std::uint32_t>(k);
     bits[i] = (u & 0x80000000u) ? ~u : (u | 0x80000000u);  // order-preserving for floats
+    lowest = std::min(lowest, bits[i]);
+    highest = std::max(highest, bits[i]);
   }
-  // Each pass is a stable counting sort on 11 bits over fixed chunks: every chunk counts its
+  // Sorted on the keys less the lowest: depths of one sign within a factor of two or four of
+  // each other (a volume seen from outside it) span fewer than 2^24 of them, two passes.
+  if (n > 0) {
+#pragma omp parallel for schedule(static)
+    for (std::size_t i = 0; i < n; ++i) bits[i] -= lowest;
+  }
+  const std::uint32_t span = n > 0 ? highest - lowest : 0;
+  // Each pass is a stable counting sort on 12 bits over fixed chunks: every chunk counts its
   // digits, the offsets run digit by digit and within a digit chunk by chunk, and every chunk
   // then scatters its own keys in order.
-  constexpr int kDigits = 2048;
+  constexpr int kBits = 12, kDigits = 1 << kBits;
   const FixedChunks chunks(n);
   std::vector<std::size_t>& offset = scratch.offsets;
   offset.resize(chunks.count * kDigits);
-  for (int shift = 0; shift < 32; shift += 11) {
+  for (int shift = 0; shift < 32 && (span >> shift) != 0; shift += kBits) {
     std::fill(offset.begin(), offset.end(), 0);
 #pragma omp parallel for schedule(static)
     for (std::size_t c = 0; c < chunks.count; ++c)
       for (std::size_t i = chunks.begin(c); i < chunks.end(c); ++i)
-        ++offset[c * kDigits + ((bits[i] >> shift) & 2047u)];
+        ++offset[c * kDigits + ((bits[i] >> shift) & (kDigits - 1))];
     std::size_t sum = 0;
     for (int d = 0; d < kDigits; ++d)
       for (std::size_t c = 0; c < chunks.count; ++c) {
@@ -117,7 +127,7 @@ void sortByDepth(std::vector<std::uint32_t>& ids, const std::vector<float>& key,
 #pragma omp parallel for schedule(static)
     for (std::size_t c = 0; c < chunks.count; ++c)
       for (std::size_t i = chunks.begin(c); i < chunks.end(c); ++i) {
-        const std::size_t to = offset[c * kDigits + ((bits[i] >> shift) & 2047u)]++;
+        const std::size_t to = offset[c * kDigits + ((bits[i] >> shift) & (kDigits - 1))]++;
         other_ids[to] = ids[i];
         other_bits[to] = bits[i];
       }

@@ -1,6 +1,7 @@
 #include <gtest/gtest.h>
 #include <omp.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <glm/geometric.hpp>
@@ -13,6 +14,8 @@
 #include "renderers/core/scene_render.h"
 #include "renderers/core/splat_footprint.h"
 #include "renderers/core/splat_settings.h"
+#include "renderers/core/splat_projection.h"
+#include "renderers/splat/splat_coverage.h"
 #include "renderers/splat/splat_list.h"
 #include "renderers/splat/splat_renderer.h"
 #include "spectral/error.h"
@@ -265,6 +268,92 @@ TEST(Splat, IdenticalBytesForOneAndTwoThreads) {
                 0)
           << mode << " plane " << p;
   }
+}
+
+// The depth sort is a stable sort of the keys (−0 with +0), whether the keys span few float
+// bit patterns (one sign, within a factor of two: the two-pass case) or many (both signs, tiny
+// and huge magnitudes), with ties, at sizes of one chunk and of many, and at 1 and 2 threads.
+TEST(SplatProjection, SortByDepthIsAStableSortOfTheKeys) {
+  std::uint32_t state = 12345;
+  const auto next = [&] { return state = state * 1664525u + 1013904223u; };
+  for (const std::size_t n : {std::size_t{0}, std::size_t{1}, std::size_t{1000}, std::size_t{300000}})
+    for (int kind = 0; kind < 3; ++kind) {
+      std::vector<float> key(n + 7);
+      for (float& k : key) {
+        const float u = static_cast<float>(next() >> 8) / 16777216.f;  // [0, 1)
+        k = kind == 0   ? 500.f + 400.f * u                           // one exponent or two
+            : kind == 1 ? (u - 0.5f) * std::ldexp(1.f, static_cast<int>(next() % 60) - 30)
+                        : static_cast<float>(next() % 5) - 2.f;      // ties, ±0 among them
+        if (kind == 2 && k == 0.f && (next() & 1)) k = -0.f;
+      }
+      std::vector<std::uint32_t> ids;
+      for (std::uint32_t i = 0; i < n + 7; ++i)
+        if (i % 8 != 3) ids.push_back(i);  // a subset, ascending, as keptIndices gives
+      std::vector<std::uint32_t> expected = ids;
+      std::stable_sort(expected.begin(), expected.end(), [&](std::uint32_t a, std::uint32_t b) {
+        return (key[a] == 0.f ? 0.f : key[a]) < (key[b] == 0.f ? 0.f : key[b]);
+      });
+      for (const int threads : {1, 2}) {
+        omp_set_num_threads(threads);
+        std::vector<std::uint32_t> sorted = ids;
+        splat::DepthSortScratch scratch;
+        splat::sortByDepth(sorted, key, scratch);
+        EXPECT_EQ(sorted, expected) << "n " << n << " kind " << kind << " threads " << threads;
+      }
+    }
+  omp_set_num_threads(omp_get_num_procs());
+}
+
+// Orthographic footprints in factors (footprint_factors.h) are the footprint itself: on the CT
+// head (slices twice as far apart as pixels) seen obliquely and rolled, so that the footprint's
+// ellipse is tilted (b ≠ 0), every pixel of every row of a sample of splats gets norm · exp(−q/2)
+// to 1e-5 of norm (float rounding of exponents up to ±20; the kernel table's nearest bin, which
+// the per-splat evaluation reads, errs by up to 8e-4), the row's [lo, hi] holds exactly the pixels with q < cutoff² (to 1e-3 in q), and
+// the three lengths after hi are 0.
+TEST(SplatRows, FactoredLengthsAreTheFootprint) {
+  Scene scene = loadScene(test::rendererDataDir() + "/scenes/cthead_xray_zoom.json",
+                          test::rendererLibrary());
+  scene.camera.eye = {-350, -420, 260};  // at the scene's 256², about 2 pixels a voxel
+  scene.camera.up = {0.5, 0.2, -1.0};  // rolled, so that the long axis (z) is oblique on screen
+  const auto model = makeSpectralModel(test::rendererObserver(), 3);
+  const ClassifiedVolume cv = classifyScene(scene, *model);
+  const RenderRequest req = sceneRequest(scene, cv);
+  const splat::KernelShape kernel =
+      splat::splatSettings(readBackendOptions(splat::splatOptionSpecs(), {}, "splat")).kernel;
+  const splat::Projector projector(req.camera, req.width, req.height, cv.spacing, kernel);
+  splat::SplatListMemory memory;
+  const splat::SplatList list(cv, req, projector, splat::SplatVoxels::Set::kVisible, memory);
+  const splat::FootprintTable table(kernel.cutoff());
+  const splat::SplatCoverage coverage(list, table, req.width, req.height);
+  ASSERT_NE(coverage.factors(), nullptr);
+  const splat::Footprint& fp = list.footprint(0);
+  ASSERT_GT(std::abs(fp.b), 0.05 * fp.a);
+  const double cut2 = table.cutoffSquared();
+  splat::SplatRows rows(coverage);
+  std::size_t checked = 0;
+  for (std::size_t i = 0; i < list.splats().size(); i += 97) {
+    const splat::Splat& s = list.splats()[i];
+    const splat::SplatRows::Box box = rows.start(i);
+    for (int y = box.ya; y <= box.yb; ++y) {
+      int lo, hi;
+      const float* w = rows.row(y, lo, hi);
+      for (int x = box.xa; x <= box.xb; ++x) {
+        const double dx = x + 0.5 - s.x, dy = y + 0.5 - s.y;
+        const double q = fp.a * dx * dx + 2.0 * fp.b * dx * dy + fp.c * dy * dy;
+        if (x < lo || x > hi) {
+          EXPECT_GT(q, cut2 - 1e-3) << i << " " << x << " " << y;
+          continue;
+        }
+        EXPECT_LT(q, cut2 + 1e-3) << i << " " << x << " " << y;
+        if (q < cut2 - 1e-3)
+          EXPECT_NEAR(w[x - lo], fp.norm * std::exp(-0.5 * q), 1e-5 * fp.norm) << i << " " << x;
+        ++checked;
+      }
+      if (lo <= hi)
+        for (int m = 1; m <= 3; ++m) EXPECT_EQ(w[hi - lo + m], 0.f);
+    }
+  }
+  EXPECT_GT(checked, 1000u);
 }
 
 // A splat's coefficients come from two rows of its blend table (σ_α, σ_α·s, σ_α·ρ, σ_t): the
