@@ -251,11 +251,22 @@ TEST(Splat, PostClassifiedSheetsFindAValueRangeNoVoxelHolds) {
 }
 
 // The phantom is a label map (classified at the voxels); the shell's sheets are post-classified.
+// The engine at 256², about a pixel a voxel: footprints large enough to be factored
+// (footprint_factors.h), where the small test scenes' are evaluated splat by splat.
+Scene engineAt256() {
+  Scene engine = loadScene(test::rendererDataDir() + "/scenes/engine.json", test::rendererLibrary());
+  engine.width = engine.height = 256;
+  return engine;
+}
+
 TEST(Splat, IdenticalBytesForOneAndTwoThreads) {
   const auto model = makeSpectralModel(test::rendererObserver(), 6);
+  const Scene engine = engineAt256();
   for (const auto& [scene, mode] : {std::pair{test::phantomScene(), std::string("sheet")},
                                     {test::phantomScene(), "direct"},
-                                    {shellScene(), "sheet"}}) {
+                                    {shellScene(), "sheet"},
+                                    {engine, "direct"},
+                                    {engine, "sheet"}}) {
     const int threads = omp_get_max_threads();
     omp_set_num_threads(1);
     const auto one = renderScene(scene, *model, SplatRenderer(), splatOptions(mode));
@@ -267,6 +278,40 @@ TEST(Splat, IdenticalBytesForOneAndTwoThreads) {
                             one.pixels() * sizeof(float)),
                 0)
           << mode << " plane " << p;
+  }
+}
+
+// A renderer keeps a frame's arrays for its next (reuse_pool.h): a second frame of another
+// view, and a third of the first view again, on reused memory, give what fresh renderers give.
+TEST(Splat, FramesOnReusedMemoryEqualFreshOnes) {
+  const auto model = makeSpectralModel(test::rendererObserver(), 3);
+  Scene engine = engineAt256();
+  Scene turned = engine;
+  turned.camera = orbitCamera(engine.camera, {.azimuth = 20, .elevation = 10, .zoom = 1.3});
+  {  // the scene takes the factored footprints
+    const ClassifiedVolume cv = classifyScene(engine, *model);
+    const RenderRequest req = sceneRequest(engine, cv);
+    const splat::KernelShape kernel =
+        splat::splatSettings(readBackendOptions(splat::splatOptionSpecs(), {}, "splat")).kernel;
+    const splat::FootprintTable table(kernel.cutoff());
+    splat::SplatListMemory memory;
+    const splat::SplatList list(cv, req,
+                                splat::Projector(req.camera, req.width, req.height, cv.spacing,
+                                                 kernel),
+                                splat::SplatVoxels::Set::kVisible, memory);
+    ASSERT_NE(splat::SplatCoverage(list, table, req.width, req.height).factors(), nullptr);
+  }
+  for (const std::string mode : {"direct", "sheet"}) {
+    const SplatRenderer reused;
+    for (const Scene* scene : {&engine, &turned, &engine}) {
+      const auto again = renderScene(*scene, *model, reused, splatOptions(mode));
+      const auto fresh = renderScene(*scene, *model, SplatRenderer(), splatOptions(mode));
+      for (int p = 0; p < fresh.planes(); ++p)
+        ASSERT_EQ(std::memcmp(fresh.planeFloat(p).data(), again.planeFloat(p).data(),
+                              fresh.pixels() * sizeof(float)),
+                  0)
+            << mode << " plane " << p;
+    }
   }
 }
 
