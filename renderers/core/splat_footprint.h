@@ -4,9 +4,10 @@
 // same for every voxel; perspective (and, in general, anisotropic spacing) makes it elliptical:
 // the EWA footprint of Zwicker et al. 2001, the kernel's covariance mapped through the local
 // Jacobian of the projection, plus a screen-space low-pass that keeps zoomed-out footprints at
-// least about a pixel wide. Every footprint is evaluated through one precomputed radial table of
-// exp(−q/2), indexed by the squared Mahalanobis distance q, and sheets take their share of a
-// kernel from a precomputed table of the normal CDF.
+// least about a pixel wide. A footprint is evaluated through one precomputed radial table of
+// exp(−q/2), indexed by the squared Mahalanobis distance q — or, the one footprint of an
+// orthographic view, exactly in factors (splat/footprint_factors.h) — and sheets take their
+// share of a kernel from a precomputed table of the normal CDF.
 
 #include <array>
 #include <glm/vec3.hpp>

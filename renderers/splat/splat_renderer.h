@@ -1,7 +1,8 @@
 #pragma once
 // The splatting backend (DESIGN §5, issue 5): every voxel that scatters or absorbs is a Gaussian
-// kernel projected to an image footprint (core/splat_footprint.h: one table for orthographic
-// views, EWA ellipses with a screen-space low-pass for perspective), composited either through
+// kernel projected to an image footprint (core/splat_footprint.h: one for every splat of an
+// orthographic view, evaluated in factors (footprint_factors.h), EWA ellipses with a
+// screen-space low-pass per splat for perspective; splat_coverage.h), composited either through
 // image-aligned sheet buffers (sheet_compositor.h, the default) or splat by splat
 // (direct_compositor.h). OpenMP over fixed bands of image rows: identical bytes for any number
 // of threads. Options and their measured defaults: core/splat_settings.h
