@@ -31,13 +31,16 @@ struct Planes {
   std::size_t plane;
 };
 
-// Row y's pixels [lo, hi] of one splat, with w[x − lo] the kernel's world length at pixel x
-// (zero outside the ellipse, and for three columns past hi). With one transmittance channel they
+// Row y's pixels [lo, hi] of one splat, with the kernel's world length at each (zero outside
+// the ellipse, and for three columns past hi). With one transmittance channel they
 // go four at a time while four fit within the image, each lane taking the one-at-a-time loop's
 // operations in its order (so a pixel gets the same floats either way); pixels outside the
 // ellipse or finished are given α = 0 and kept = 1, which leave S and T as they are.
-template <int K>
-void compositeRow(const float* w, int lo, int hi, const SplatInk& ink, int k, int kt,
+//
+// Lengths: lengths4(x), pixels x … x + 3's lengths (from a copied row, or computed from the
+// factors as they are needed).
+template <int K, class Lengths>
+void compositeRow(const Lengths& lengths4, int lo, int hi, const SplatInk& ink, int k, int kt,
                   const Planes& img, BandState& state, int y) {
   const std::uint8_t* done = state.doneRow(y);
   const std::size_t row = state.pixel(0, y);
@@ -46,7 +49,7 @@ void compositeRow(const float* w, int lo, int hi, const SplatInk& ink, int k, in
     const Float4 one = splat4(1.f), zero = splat4(0.f);
     const int last = std::min(hi, state.width() - 4);  // four columns fit from here on
     for (; x <= last; x += 4) {
-      const Float4 length = load4(w + (x - lo));
+      const Float4 length = lengths4(x);
       const Int4 finished{done[x], done[x + 1], done[x + 2], done[x + 3]};
       const Int4 draws = (length > zero) & (finished == 0);
       if (!(draws[0] | draws[1] | draws[2] | draws[3])) continue;
@@ -75,7 +78,7 @@ void compositeRow(const float* w, int lo, int hi, const SplatInk& ink, int k, in
   float* const T = img.T;
   const std::size_t plane = img.plane;
   for (; x <= hi; ++x) {
-    const float length = w[x - lo];
+    const float length = lengths4(x)[0];
     if (!(length > 0.f) || done[x]) continue;
     const std::size_t p = row + x;
     const float kept = fastExp(-ink.sigma_alpha * length);
@@ -128,9 +131,18 @@ void compositeBand(const SplatCoverage& coverage, std::span<const std::uint32_t>
     const SplatInk ink{coef.sigma_alpha, sigma_t, colour.data(), attenuates,
                        kt == 1 && sigma_t[0] == coef.sigma_alpha};
     for (int y = box.ya; y <= box.yb; ++y) {
+      if (rows.factored()) {
+        // The box's columns, their lengths computed four at a time as they are composited.
+        const SplatRows::FactoredRow f = rows.factoredLengths(y);
+        compositeRow<K>([&f](int x) { return f.lengths4(x); }, box.xa, box.xb, ink, k, kt, img,
+                        state, y);
+        continue;
+      }
       int lo, hi;
       const float* w = rows.row(y, lo, hi);
-      if (lo <= hi) compositeRow<K>(w, lo, hi, ink, k, kt, img, state, y);
+      if (lo <= hi)
+        compositeRow<K>([w, lo](int x) { return load4(w + (x - lo)); }, lo, hi, ink, k, kt, img,
+                        state, y);
     }
   }
 }

@@ -53,6 +53,23 @@ class SplatRows {
   // The same box, without preparing its rows.
   Box box(std::size_t i) const;
 
+  // Row y of a factored splat as four lengths at a time (zero outside the ellipse), for a
+  // caller that consumes them as they come, without the row's copy: lengths(x) are pixels
+  // x … x + 3's, for x in the box (and up to three past it).
+  struct FactoredRow {
+    const float *lengths, *table_q, *column, *column_q;  // column 0 at pixel x0
+    int x0;
+    float row, row_q, cut2;
+    Float4 lengths4(int x) const {
+      const int i = x - x0;
+      const Float4 q = (load4(table_q + i) + load4(column_q + i)) + row_q;
+      const Float4 w = load4(lengths + i) * load4(column + i) * row;
+      return q < splat4(cut2) ? w : splat4(0.f);
+    }
+  };
+  bool factored() const { return factors_ != nullptr; }
+  FactoredRow factoredLengths(int y);
+
   // Row y (within the box) of the splat last started: the pixels [lo, hi] of the row with a
   // non-zero length (lo > hi where the row misses the ellipse), and lengths w with w[x − lo] the
   // kernel's world length at pixel x, zero outside the ellipse and for three columns past hi.
@@ -90,22 +107,23 @@ inline SplatRows::Box SplatRows::box(std::size_t i) const {
   return box;
 }
 
-inline const float* SplatRows::factoredRow(int y, int& lo, int& hi) {
+inline SplatRows::FactoredRow SplatRows::factoredLengths(int y) {
   if (!prepared_) prepareFactors();
-  const int r = y - y0_, first = box_.xa - x0_, n = box_.xb - box_.xa + 1;
-  const float* lengths = factors_->lengths(r) + first;
-  const float* table_q = factors_->q(r) + first;
-  const float* column = column_.data() + first;
-  const float* column_q = column_q_.data() + first;
-  const float row = row_[r], row_q = row_q_[r];
-  const Float4 cut2 = splat4(cut2_), zero = splat4(0.f);
+  const int r = y - y0_;
+  return {factors_->lengths(r), factors_->q(r), column_.data(), column_q_.data(), x0_,
+          row_[r], row_q_[r], cut2_};
+}
+
+inline const float* SplatRows::factoredRow(int y, int& lo, int& hi) {
+  const FactoredRow f = factoredLengths(y);
+  const int n = box_.xb - box_.xa + 1;
+  const Float4 zero = splat4(0.f);
   float* out = scratch_.data();
   int a = n, b = -1;  // the first and last columns inside the ellipse
   for (int i = 0; i < n; i += 4) {
-    const Float4 q = (load4(table_q + i) + load4(column_q + i)) + row_q;
-    const Float4 w = load4(lengths + i) * load4(column + i) * row;
-    const Int4 inside = q < cut2;
-    store4(out + i, inside ? w : zero);
+    const Float4 w = f.lengths4(box_.xa + i);
+    const Int4 inside = w > zero;
+    store4(out + i, w);
     const unsigned lanes = laneMask(inside);
     if (lanes == 0) continue;
     a = std::min(a, i + std::countr_zero(lanes));
