@@ -1,7 +1,6 @@
 #include "renderers/splat/splat_coverage.h"
 
-#include <bit>
-#include <limits>
+#include <algorithm>
 
 namespace svr::splat {
 
@@ -19,7 +18,6 @@ SplatRows::SplatRows(const SplatCoverage& coverage)
     scratch_.resize(std::max<std::size_t>(scratch_.size(), columns + 8), 0.f);
   }
 }
-
 
 SplatRows::Box SplatRows::start(std::size_t i) {
   splat_ = &cov_.list().splats()[i];
@@ -61,8 +59,6 @@ void SplatRows::prepareFactors() {
   powers(fp.norm * e[2], e[3], 2.f * static_cast<float>(ry) * gy + q_phase, -2.f * gy,
          row_.data(), row_q_.data(), row_.size());
 }
-
-
 
 const float* SplatRows::evaluatedRow(int y, int& lo, int& hi) {
   const Footprint& fp = *fp_;

@@ -54,7 +54,7 @@ class SplatRows {
   Box box(std::size_t i) const;
 
   // Row y of a factored splat as four lengths at a time (zero outside the ellipse), for a
-  // caller that consumes them as they come, without the row's copy: lengths(x) are pixels
+  // caller that consumes them as they come, without the row's copy: lengths4(x) are pixels
   // x … x + 3's, for x in the box (and up to three past it).
   struct FactoredRow {
     const float *lengths, *table_q, *column, *column_q;  // column 0 at pixel x0
@@ -95,7 +95,6 @@ class SplatRows {
   std::vector<float> column_, column_q_, row_, row_q_;
   std::vector<float> scratch_;
 };
-
 
 // Inline: called for every splat, and every row of one.
 inline SplatRows::Box SplatRows::box(std::size_t i) const {
