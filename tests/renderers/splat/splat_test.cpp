@@ -390,12 +390,14 @@ TEST(SplatRows, FactoredLengthsAreTheFootprint) {
           continue;
         }
         EXPECT_LT(q, cut2 + 1e-3) << i << " " << x << " " << y;
-        if (q < cut2 - 1e-3)
+        if (q < cut2 - 1e-3) {
           EXPECT_NEAR(w[x - lo], fp.norm * std::exp(-0.5 * q), 1e-5 * fp.norm) << i << " " << x;
+        }
         ++checked;
       }
-      if (lo <= hi)
+      if (lo <= hi) {
         for (int m = 1; m <= 3; ++m) EXPECT_EQ(w[hi - lo + m], 0.f);
+      }
     }
   }
   EXPECT_GT(checked, 1000u);
