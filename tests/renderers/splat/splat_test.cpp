@@ -463,7 +463,7 @@ TEST(Splat, FixedWidthDirectCompositingEqualsDynamicWidth) {
     for (const int k : {3, 4, 6, 8, 5}) {
       const auto model = makeSpectralModel(test::rendererObserver(), k);
       const auto fixed = renderScene(scene, *model, SplatRenderer(), splatOptions("direct"));
-      const auto dynamic = renderScene(scene, *model, SplatRenderer({.dynamic_width = true}),
+      const auto dynamic = renderScene(scene, *model, SplatRenderer({.dynamic_width = true, .isa = std::nullopt}),
                                        splatOptions("direct"));
       ASSERT_EQ(fixed.planes(), dynamic.planes());
       for (int p = 0; p < fixed.planes(); ++p)
