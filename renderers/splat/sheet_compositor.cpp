@@ -147,6 +147,35 @@ struct Chord {
   std::size_t lengths;
 };
 
+// Splat `id` made active: its box within the band, its payload and its rows' chords and lengths
+// appended to the pools. A splat over finished pixels adds nothing: it stays in the list (to
+// retire in order) with an empty box, and its rows are never evaluated.
+ActiveSplat activate(std::uint32_t id, double t0, SplatRows& rows, SheetContent& content,
+                     const BandState& state, std::vector<float>& pool,
+                     std::vector<Chord>& chord_pool) {
+  const Splat& s = rows.coverage().list().splats()[id];
+  ActiveSplat a{id, s.depth};
+  a.t0 = t0;
+  const SplatRows::Box box = rows.start(id);
+  a.xa = box.xa;
+  a.xb = box.xb;
+  a.ya = std::max(box.ya, state.y0());
+  a.yb = std::min(box.yb, state.y1() - 1);
+  if (a.xa <= a.xb && a.ya <= a.yb && state.columnsDone(a.xa, a.xb)) a.xb = a.xa - 1;
+  a.coefs = pool.size();
+  a.chords = chord_pool.size();
+  if (a.xa > a.xb || a.ya > a.yb) return a;
+  content.payload(s, pool);
+  for (int y = a.ya; y <= a.yb; ++y) {
+    Chord c;
+    const float* lengths = rows.row(y, c.lo, c.hi);
+    c.lengths = pool.size();
+    if (c.lo <= c.hi) pool.insert(pool.end(), lengths, lengths + (c.hi - c.lo + 1));
+    chord_pool.push_back(c);
+  }
+  return a;
+}
+
 // One band, sheet by sheet; the sheet buffer holds per pixel what SheetContent accumulates.
 // Splats are front to back, and every splat of one render reaches
 // the same depth either side (the kernel seen along the view axis), so they become active and
@@ -206,33 +235,8 @@ void compositeBand(const SplatCoverage& coverage, std::span<const std::uint32_t>
       // The band's ids rise with gaps the hardware prefetcher cannot follow: ask for a later one.
       constexpr std::size_t kAhead = 8;
       if (next + kAhead < ids.size()) __builtin_prefetch(&splats[ids[next + kAhead]]);
-      const Splat& s = splats[ids[next]];
-      ActiveSplat a{ids[next], s.depth};
-      a.t0 = (first_sheet - s.depth) / depth_sigma;
-      const SplatRows::Box box = rows.start(ids[next]);
-      a.xa = box.xa;
-      a.xb = box.xb;
-      a.ya = std::max(box.ya, y0);
-      a.yb = std::min(box.yb, y1 - 1);
-      // A splat over finished pixels adds nothing: it stays in the list (retiring in order)
-      // with an empty box, and its rows are never evaluated.
-      if (a.xa <= a.xb && a.ya <= a.yb && state.columnsDone(a.xa, a.xb)) a.xb = a.xa - 1;
-      a.coefs = pool.size();
-      a.chords = chord_pool.size();
-      if (a.xa > a.xb || a.ya > a.yb) {
-        active.push_back(a);
-        ++next;
-        continue;
-      }
-      content.payload(s, pool);
-      for (int y = a.ya; y <= a.yb; ++y) {
-        Chord c;
-        const float* lengths = rows.row(y, c.lo, c.hi);
-        c.lengths = pool.size();
-        if (c.lo <= c.hi) pool.insert(pool.end(), lengths, lengths + (c.hi - c.lo + 1));
-        chord_pool.push_back(c);
-      }
-      active.push_back(a);
+      active.push_back(activate(ids[next], (first_sheet - splats[ids[next]].depth) / depth_sigma,
+                                rows, content, state, pool, chord_pool));
       ++next;
     }
     int rx0 = width, rx1 = -1, ry0 = y1, ry1 = y0 - 1;  // the sheet's dirty rectangle

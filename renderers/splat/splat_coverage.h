@@ -43,6 +43,7 @@ class SplatCoverage {
 class SplatRows {
  public:
   explicit SplatRows(const SplatCoverage& coverage);
+  const SplatCoverage& coverage() const { return cov_; }
 
   // The box of splat i within the image: columns [xa, xb], rows [ya, yb] (empty when xa > xb or
   // ya > yb). Every pixel whose centre lies inside the footprint's ellipse lies inside it.
