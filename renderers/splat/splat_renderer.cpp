@@ -1,6 +1,9 @@
 #include "renderers/splat/splat_renderer.h"
 
+#include <omp.h>
+
 #include <algorithm>
+#include <glm/vec2.hpp>
 
 #include "renderers/core/splat_footprint.h"
 #include "renderers/core/splat_settings.h"
@@ -34,6 +37,9 @@ const BackendInfo& SplatRenderer::info() const {
 
 namespace {
 
+// Image rows a band takes (each composited by one thread, in order; the splats' bands).
+constexpr int kBandRows = 16;
+
 // Whether this render classifies per sheet pixel: `auto` does wherever it applies; asking for
 // post where it cannot (direct compositing has no sheet to classify; a label map has no values
 // between its voxels) is an error naming the key.
@@ -53,6 +59,31 @@ bool postClassified(const BackendOptions& options, const splat::SplatSettings& s
 
 }  // namespace
 
+std::uint64_t SplatRenderer::workingBytes(const RenderRequest& req,
+                                          const BackendOptions& options) const {
+  const splat::SplatSettings settings = splat::splatSettings(options);
+  const ClassifiedVolume& cv = req.volume;
+  const bool post = postClassified(options, settings, cv);
+  const std::uint64_t voxels =
+      splat::SplatVoxels::of(cv, post ? splat::SplatVoxels::Set::kReconstruction
+                                      : splat::SplatVoxels::Set::kVisible)
+          ->voxels()
+          .size();
+  // Per listed voxel: its position, depth, keep flag and order; three sort arrays; its splat
+  // in list order and in depth order; its band range and about two band entries; a perspective
+  // camera's footprint, in list order and in depth order.
+  std::uint64_t per_voxel = sizeof(glm::vec2) + sizeof(float) + 1 + 4 + 3 * 4 +
+                            2 * sizeof(splat::Splat) + 2 * 4 + 2 * 4;
+  if (!req.camera.orthographic()) per_voxel += 2 * sizeof(splat::Footprint);
+  // Each thread's sheet buffer: a band's rows of the image, up to 1 + k + kt floats a pixel.
+  const std::uint64_t sheet = settings.mode == splat::SplatSettings::Mode::kSheet
+                                  ? std::uint64_t(req.width) * kBandRows *
+                                        std::uint64_t(1 + cv.k + cv.t_channels) * sizeof(float) *
+                                        std::uint64_t(omp_get_max_threads())
+                                  : 0;
+  return voxels * per_voxel + sheet;
+}
+
 LightIndependentImage SplatRenderer::renderImpl(const RenderRequest& req,
                                                 const BackendOptions& options,
                                                 ProgressCounter& progress) const {
@@ -69,7 +100,6 @@ LightIndependentImage SplatRenderer::renderImpl(const RenderRequest& req,
       post ? splat::SplatVoxels::Set::kReconstruction : splat::SplatVoxels::Set::kVisible,
       memory->list);
   const splat::SplatCoverage coverage(list, table, req.width, req.height);
-  constexpr int kBandRows = 16;
   splat::Bands& bands = memory->bands;
   splat::bandsOf(coverage, kBandRows, bands);
   const float termination = static_cast<float>(req.termination);

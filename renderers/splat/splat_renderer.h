@@ -25,6 +25,10 @@ class SplatRenderer final : public Renderer {
   const BackendInfo& info() const override;
 
  protected:
+  // A frame's splat arrays (SplatFrameMemory: projections, sort keys, splat records, band lists;
+  // about 100 bytes a listed voxel) and each thread's sheet buffer.
+  std::uint64_t workingBytes(const RenderRequest& request,
+                             const BackendOptions& options) const override;
   LightIndependentImage renderImpl(const RenderRequest& request, const BackendOptions& options,
                                    ProgressCounter& progress) const override;
 

@@ -315,6 +315,32 @@ TEST(Splat, FramesOnReusedMemoryEqualFreshOnes) {
   }
 }
 
+// A frame's splat arrays count against the memory budget (about 100 bytes a listed voxel: some
+// 140 MiB for the engine's 1.4 M at any image size), as the output image does: a budget with
+// room for the image alone is refused, naming the backend; one with room for both renders.
+TEST(Splat, WorkingArraysCountAgainstTheMemoryBudget) {
+  const auto model = makeSpectralModel(test::rendererObserver(), 3);
+  const Scene engine = engineAt256();
+  const ClassifiedVolume cv = classifyScene(engine, *model);
+  RenderRequest request = sceneRequest(engine, cv);
+  const std::uint64_t image =
+      LightIndependentImage::bytesFor(request.width, request.height, cv.k, cv.t_channels);
+  for (const std::string mode : {"direct", "sheet"}) {
+    request.options = splatOptions(mode);
+    request.memory_budget = image + (std::uint64_t{16} << 20);  // room for the image and 16 MiB
+    try {
+      SplatRenderer().render(request);
+      FAIL() << mode << ": a budget with room for the image alone was accepted";
+    } catch (const Error& e) {
+      EXPECT_NE(std::string(e.what()).find("splat"), std::string::npos) << e.what();
+      EXPECT_NE(std::string(e.what()).find("over the memory budget"), std::string::npos)
+          << e.what();
+    }
+    request.memory_budget = image + (std::uint64_t{512} << 20);
+    EXPECT_NO_THROW(SplatRenderer().render(request)) << mode;
+  }
+}
+
 // The depth sort is a stable sort of the keys (−0 with +0), whether the keys span few float
 // bit patterns (one sign, within a factor of two: the two-pass case) or many (both signs, tiny
 // and huge magnitudes), with ties, at sizes of one chunk and of many, and at 1 and 2 threads.
