@@ -53,12 +53,14 @@ LightIndependentImage Renderer::render(const RenderRequest& request,
   const BackendOptions options = readBackendOptions(backend.options, request.options,
                                                     backend.name, request.options_source);
   const ClassifiedVolume& cv = request.volume;
+  const std::uint64_t working = workingBytes(request, options);
   checkMemoryBudget(
       LightIndependentImage::bytesFor(request.width, request.height, cv.k, cv.t_channels) +
-          workingBytes(request, options),
+          working,
       request.memory_budget,
-      fmt::format("{}: a {}×{} image of {} + {} channels", backend.name, request.width,
-                  request.height, cv.k, cv.t_channels));
+      fmt::format("{}: a {}×{} image of {} + {} channels{}", backend.name, request.width,
+                  request.height, cv.k, cv.t_channels,
+                  working > 0 ? " and its working memory" : ""));
   ProgressCounter counter(progress);
   LightIndependentImage image = renderImpl(request, options, counter);
   counter.set(1.0);
