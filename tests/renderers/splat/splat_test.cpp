@@ -251,6 +251,17 @@ TEST(Splat, PostClassifiedSheetsFindAValueRangeNoVoxelHolds) {
 }
 
 // The phantom is a label map (classified at the voxels); the shell's sheets are post-classified.
+// Every plane of b equals a's, byte for byte.
+void expectSameBytes(const LightIndependentImage& a, const LightIndependentImage& b,
+                     const std::string& what) {
+  ASSERT_EQ(a.planes(), b.planes()) << what;
+  for (int p = 0; p < a.planes(); ++p)
+    ASSERT_EQ(std::memcmp(a.planeFloat(p).data(), b.planeFloat(p).data(),
+                          a.pixels() * sizeof(float)),
+              0)
+        << what << " plane " << p;
+}
+
 // The engine at 256², about a pixel a voxel: footprints large enough to be factored
 // (footprint_factors.h), where the small test scenes' are evaluated splat by splat.
 Scene engineAt256() {
@@ -273,11 +284,7 @@ TEST(Splat, IdenticalBytesForOneAndTwoThreads) {
     omp_set_num_threads(2);
     const auto two = renderScene(scene, *model, SplatRenderer(), splatOptions(mode));
     omp_set_num_threads(threads);
-    for (int p = 0; p < one.planes(); ++p)
-      ASSERT_EQ(std::memcmp(one.planeFloat(p).data(), two.planeFloat(p).data(),
-                            one.pixels() * sizeof(float)),
-                0)
-          << mode << " plane " << p;
+    expectSameBytes(one, two, mode);
   }
 }
 
@@ -306,11 +313,7 @@ TEST(Splat, FramesOnReusedMemoryEqualFreshOnes) {
     for (const Scene* scene : {&engine, &turned, &engine}) {
       const auto again = renderScene(*scene, *model, reused, splatOptions(mode));
       const auto fresh = renderScene(*scene, *model, SplatRenderer(), splatOptions(mode));
-      for (int p = 0; p < fresh.planes(); ++p)
-        ASSERT_EQ(std::memcmp(fresh.planeFloat(p).data(), again.planeFloat(p).data(),
-                              fresh.pixels() * sizeof(float)),
-                  0)
-            << mode << " plane " << p;
+      expectSameBytes(fresh, again, mode);
     }
   }
 }
