@@ -99,10 +99,8 @@ void sortByDepth(std::vector<std::uint32_t>& ids, const std::vector<float>& key,
   }
   // Sorted on the keys less the lowest: depths of one sign within a factor of two or four of
   // each other (a volume seen from outside it) span fewer than 2^24 of them, two passes.
-  if (n > 0) {
 #pragma omp parallel for schedule(static)
-    for (std::size_t i = 0; i < n; ++i) bits[i] -= lowest;
-  }
+  for (std::size_t i = 0; i < n; ++i) bits[i] -= lowest;
   const std::uint32_t span = n > 0 ? highest - lowest : 0;
   // Each pass is a stable counting sort on 12 bits over fixed chunks: every chunk counts its
   // digits, the offsets run digit by digit and within a digit chunk by chunk, and every chunk

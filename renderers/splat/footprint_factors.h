@@ -28,7 +28,6 @@ class FootprintFactors {
 
   int radiusX() const { return radius_x_; }  // I runs over [−radiusX, radiusX + 1]
   int radiusY() const { return radius_y_; }  // J over [−radiusY, radiusY + 1]
-  int columns() const { return columns_; }
   int rows() const { return rows_; }
   int stride() const { return stride_; }  // columns padded to whole vectors, plus one
   // Row r (J = r − radiusY) of exp(−q(I, J)/2) and of q(I, J), at column i (I = i − radiusX);

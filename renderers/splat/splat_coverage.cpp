@@ -10,7 +10,7 @@ SplatRows::SplatRows(const SplatCoverage& coverage)
       cut2_(coverage.table().cutoffSquared()),
       scratch_(coverage.width() + 8, 0.f) {
   if (factors_) {
-    const int columns = factors_->stride(), rows = 2 * factors_->radiusY() + 2;
+    const int columns = factors_->stride(), rows = factors_->rows();
     column_.assign(columns, 0.f);
     column_q_.assign(columns, 0.f);
     row_.assign((rows + 3) / 4 * 4, 0.f);
@@ -22,7 +22,7 @@ SplatRows::SplatRows(const SplatCoverage& coverage)
 SplatRows::Box SplatRows::start(std::size_t i) {
   splat_ = &cov_.list().splats()[i];
   fp_ = &cov_.list().footprint(i);
-  box_ = box(i);
+  box_ = cov_.box(i);
   prepared_ = false;
   return box_;
 }

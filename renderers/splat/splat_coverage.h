@@ -2,8 +2,8 @@
 // The pixels a splat covers and its kernel's world length at each, row by row: one mechanism
 // for the bands and both compositing modes. Under an orthographic camera the lengths come from
 // the frame's footprint factors (footprint_factors.h), four pixels at a time; otherwise
-// (perspective, or a footprint too elongated to factor) from the splat's own footprint, one
-// pixel at a time through the kernel table.
+// (perspective, or a footprint too small or too elongated to factor) from the splat's own
+// footprint, one pixel at a time through the kernel table.
 
 #include <algorithm>
 #include <bit>
@@ -32,6 +32,20 @@ class SplatCoverage {
   int height() const { return height_; }
   const FootprintFactors* factors() const { return factors_ ? &*factors_ : nullptr; }
 
+  // The box of splat i within the image: columns [xa, xb], rows [ya, yb] (empty when xa > xb or
+  // ya > yb). Every pixel whose centre lies inside the footprint's ellipse lies inside it.
+  struct Box {
+    int xa, xb, ya, yb;
+  };
+  Box box(std::size_t i) const {
+    const Splat& s = list_.splats()[i];
+    const Footprint& fp = list_.footprint(i);
+    Box box;
+    pixelRange(s.x, fp.half_w, width_, box.xa, box.xb);
+    pixelRange(s.y, fp.half_h, height_, box.ya, box.yb);
+    return box;
+  }
+
  private:
   const SplatList& list_;
   const FootprintTable& table_;
@@ -45,14 +59,9 @@ class SplatRows {
   explicit SplatRows(const SplatCoverage& coverage);
   const SplatCoverage& coverage() const { return cov_; }
 
-  // The box of splat i within the image: columns [xa, xb], rows [ya, yb] (empty when xa > xb or
-  // ya > yb). Every pixel whose centre lies inside the footprint's ellipse lies inside it.
-  struct Box {
-    int xa, xb, ya, yb;
-  };
+  // Places splat i for row(): its box (SplatCoverage::box).
+  using Box = SplatCoverage::Box;
   Box start(std::size_t i);
-  // The same box, without preparing its rows.
-  Box box(std::size_t i) const;
 
   // Row y of a factored splat as four lengths at a time (zero outside the ellipse), for a
   // caller that consumes them as they come, without the row's copy: lengths4(x) are pixels
@@ -98,15 +107,6 @@ class SplatRows {
 };
 
 // Inline: called for every splat, and every row of one.
-inline SplatRows::Box SplatRows::box(std::size_t i) const {
-  const Splat& s = cov_.list().splats()[i];
-  const Footprint& fp = cov_.list().footprint(i);
-  Box box;
-  pixelRange(s.x, fp.half_w, cov_.width(), box.xa, box.xb);
-  pixelRange(s.y, fp.half_h, cov_.height(), box.ya, box.yb);
-  return box;
-}
-
 inline SplatRows::FactoredRow SplatRows::factoredLengths(int y) {
   if (!prepared_) prepareFactors();
   const int r = y - y0_;

@@ -166,16 +166,12 @@ void bandsOf(const SplatCoverage& coverage, int rows, Bands& bands) {
   std::vector<std::int32_t>&first_band = bands.first, &last_band = bands.last;
   first_band.resize(splats.size());
   last_band.resize(splats.size());
-#pragma omp parallel
-  {
-    SplatRows cursor(coverage);
-#pragma omp for schedule(static)
-    for (std::size_t i = 0; i < splats.size(); ++i) {
-      const SplatRows::Box box = cursor.box(i);
-      const bool empty = box.xa > box.xb || box.ya > box.yb;
-      first_band[i] = empty ? 0 : box.ya / rows;
-      last_band[i] = empty ? -1 : box.yb / rows;
-    }
+#pragma omp parallel for schedule(static)
+  for (std::size_t i = 0; i < splats.size(); ++i) {
+    const SplatCoverage::Box box = coverage.box(i);
+    const bool empty = box.xa > box.xb || box.ya > box.yb;
+    first_band[i] = empty ? 0 : box.ya / rows;
+    last_band[i] = empty ? -1 : box.yb / rows;
   }
   const auto range = [&](std::size_t i, int& b0, int& b1) {
     b0 = first_band[i];
