@@ -89,6 +89,64 @@ SVR_SHEARWARP_INLINE void blendLabels(const SliceTable& table,
   }
 }
 
+// Lanes [0, n) of `fresh`, the others of `kept`.
+SVR_SHEARWARP_INLINE Float4 firstLanes(Float4 fresh, Float4 kept, int n) {
+  const Int4 lane{0, 1, 2, 3};
+  return lane < n ? fresh : kept;
+}
+
+// max(m, each lane of v), as std::max over the lanes in turn.
+SVR_SHEARWARP_INLINE float maxLanes(float m, Float4 v) {
+  for (int lane = 0; lane < 4; ++lane) m = std::max(m, v[lane]);
+  return m;
+}
+
+// One sample composited into its pixel (S: k channels, then T: 1 or k) from its classification,
+// a table row's channels (acc: α, α·s, α·ρ, t; or two rows r0, r1 blended by frac, read in
+// place): S += T ⊙ (α·ρ shade + white α·s highlight) where α > 0, then T ⊙= t. Four channels at
+// a time, each lane with the scalar loop's arithmetic, so that fixed-k and dynamic-k agree bit
+// for bit whichever split they take. A last partial vector of S is taken whole where the pixel's
+// own T follows it (its T lanes stored back unchanged, before T is updated), the rest one
+// channel at a time. Returns the largest T. white: k coefficients and SliceTable::kSlack more.
+template <int K, bool kSpectralT>
+SVR_SHEARWARP_INLINE float compositeSample(float* S, int k, const float* r0, const float* r1,
+                                           float frac, float shade, float highlight,
+                                           const float* white) {
+  const int kt = kSpectralT ? k : 1;
+  float* T = S + k;
+  const Float4 f = splat4(frac);
+  const auto lerp4 = [&](int j) {
+    const Float4 a = load4(r0 + j);
+    return a + f * (load4(r1 + j) - a);
+  };
+  const auto lerp1 = [&](int j) { return r0[j] + frac * (r1[j] - r0[j]); };
+  if (lerp1(0) > 0.f) {  // α
+    const float hs = highlight * lerp1(1);
+    const Float4 shade4 = splat4(shade), hs4 = splat4(hs), t1 = splat4(T[0]);
+    int ch = 0;
+    for (; ch < k && ch + 4 <= k + kt; ch += 4) {
+      const Float4 s = load4(S + ch);
+      const Float4 t = kSpectralT ? load4(T + ch) : t1;
+      const Float4 lit = s + t * (lerp4(2 + ch) * shade4 + load4(white + ch) * hs4);
+      store4(S + ch, ch + 4 <= k ? lit : firstLanes(lit, s, k - ch));
+    }
+    for (; ch < k; ++ch)
+      S[ch] += T[kSpectralT ? ch : 0] * (lerp1(2 + ch) * shade + white[ch] * hs);
+  }
+  float tmax = 0.f;
+  int ch = 0;
+  for (; ch + 4 <= kt; ch += 4) {
+    const Float4 t = load4(T + ch) * lerp4(2 + k + ch);
+    store4(T + ch, t);
+    tmax = maxLanes(tmax, t);
+  }
+  for (; ch < kt; ++ch) {
+    T[ch] *= lerp1(2 + k + ch);
+    tmax = std::max(tmax, T[ch]);
+  }
+  return tmax;
+}
+
 // Up to kMax live pixels of one scanline in one slice, with their cells along i and fractions.
 // A slice's samples are independent of each other, so the kernels take them in batches, one
 // stage at a time over the whole batch (blend the records and shade, then composite): the
@@ -168,18 +226,20 @@ SVR_SHEARWARP_INLINE void compositeSlice(const CompositeJob& job, int v, int sli
   const AxisEncoding& enc = *job.encoding;
   const SliceTable& table = *job.table;
   const int k = K > 0 ? K : cv.k;
-  const int kt = kSpectralT ? k : 1;
   constexpr int kStride = K > 0 ? SliceTable::strideFor(2 + K + (kSpectralT ? K : 1)) : 0;
   constexpr int kWidthCap = SliceTable::strideFor(2 + kMaxChannels + kMaxChannels);
   constexpr int kMax = SampleBatch::kMax;
-  const float* white = cv.white.data();
+  const float* white = table.white.data();
   float* row = job.image->pixel(0, v);
   const int stride = job.image->channels();
   forEachSample(job, v, slice, links, [&](int j0, float fj) __attribute__((always_inline)) {
     // Voxel i of rows j0 and j0 + 1, for the i the cell runs touch.
     const VoxelRecord* rec0 = enc.rowRecords(slice, j0);
     const VoxelRecord* rec1 = enc.rowRecords(slice, j0 + 1);
-    return [&, rec0, rec1, fj](SampleBatch& b) __attribute__((always_inline)) {
+    // The row the next scanline adds (the rows are consecutive in memory): fetched while this
+    // scanline composites, a line per sample, since the records stream from beyond the caches.
+    const VoxelRecord* rec2 = enc.rowRecords(slice, std::min(j0 + 2, enc.rowCount() - 1));
+    return [&, rec0, rec1, rec2, fj](SampleBatch& b) __attribute__((always_inline)) {
       const auto corners = [&](int p, const VoxelRecord* c[4], float w[4]) {
         const int i0 = b.i0[p];
         const float fi = b.fi[p];
@@ -196,6 +256,7 @@ SVR_SHEARWARP_INLINE void compositeSlice(const CompositeJob& job, int v, int sli
       const Float4 fj4 = splat4(fj);
       for (int p = 0; p < b.count; ++p) {
         const int i0 = b.i0[p];
+        __builtin_prefetch(rec2 + i0);
         const Float4 fi4 = splat4(b.fi[p]);
         const Float4 a0 = load4(&rec0[i0].bin), a1 = load4(&rec0[i0 + 1].bin);
         const Float4 b0 = load4(&rec1[i0].bin), b1 = load4(&rec1[i0 + 1].bin);
@@ -210,33 +271,35 @@ SVR_SHEARWARP_INLINE void compositeSlice(const CompositeJob& job, int v, int sli
         store4(shade + p, lit);
         store4(highlight + p, shiny);
       }
-      // Stage 2: classify (the two bins around the interpolated bin coordinate, or the
-      // corners' labels) and composite.
+      // Stage 2: classify (the two entries around the interpolated bin coordinate, four pixels
+      // at a time; or the corners' labels blended) and composite.
+      alignas(16) int e0s[kMax], e1s[kMax];
+      alignas(16) float fracs[kMax];
+      if (!cv.labels) {
+        for (int p = b.count; p < padded; ++p) bins[p] = 0.f;
+        for (int p = 0; p < padded; p += 4) {
+          Int4 e0, e1;
+          Float4 frac;
+          entriesOfBins(cv, load4(bins + p), e0, e1, frac);
+          std::memcpy(e0s + p, &e0, sizeof e0);
+          std::memcpy(e1s + p, &e1, sizeof e1);
+          store4(fracs + p, frac);
+        }
+      }
       for (int p = 0; p < b.count; ++p) {
-        alignas(16) float acc[K > 0 ? kStride : kWidthCap];
-        const int width = K > 0 ? kStride : table.stride;
+        float* S = row + static_cast<std::size_t>(b.u[p]) * stride;
+        float tmax;
         if (cv.labels) {
+          alignas(16) float acc[(K > 0 ? kStride : kWidthCap) + SliceTable::kSlack];
           const VoxelRecord* c[4];
           float w[4];
           corners(p, c, w);
-          blendLabels(table, c, w, width, acc);
+          blendLabels(table, c, w, K > 0 ? kStride : table.stride, acc);
+          tmax = compositeSample<K, kSpectralT>(S, k, acc, acc, 0.f, shade[p], highlight[p],
+                                                white);
         } else {
-          int e0, e1;
-          float frac;
-          entriesOfBin(cv, bins[p], e0, e1, frac);
-          lerpRows(table.row(e0), table.row(e1), frac, width, acc);
-        }
-        float* S = row + static_cast<std::size_t>(b.u[p]) * stride;
-        float* T = S + k;
-        if (acc[0] > 0.f) {  // α
-          const float hs = highlight[p] * acc[1];
-          for (int ch = 0; ch < k; ++ch)
-            S[ch] += T[kSpectralT ? ch : 0] * (acc[2 + ch] * shade[p] + white[ch] * hs);
-        }
-        float tmax = 0.f;
-        for (int ch = 0; ch < kt; ++ch) {
-          T[ch] *= acc[2 + k + ch];
-          tmax = std::max(tmax, T[ch]);
+          tmax = compositeSample<K, kSpectralT>(S, k, table.row(e0s[p]), table.row(e1s[p]),
+                                                fracs[p], shade[p], highlight[p], white);
         }
         b.opaque[p] = tmax < job.threshold;
       }

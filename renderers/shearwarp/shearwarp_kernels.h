@@ -21,15 +21,24 @@ inline constexpr int kMaxChannels = 128;
 // Per entry, for the slice spacing: [α, α·specular, α·ρ_0 … α·ρ_{k−1}, t_0 … t_{kt−1}], rows
 // padded to a multiple of 4 floats (raycast/sample_table.h's layout for this backend's own
 // opacity correction).
+// The kernel reads a row's channels four at a time from any channel on (lanes past the row's
+// last channel are not used), so the rows, and the white coefficients kept beside them, end
+// with kSlack floats of slack.
 struct SliceTable {
   static constexpr int strideFor(int width) { return (width + 3) / 4 * 4; }
+  static constexpr int kSlack = 4;
   int stride = 0;
   std::vector<float> rows;
+  std::vector<float> white;  // the classification's k white coefficients, then the slack
   // alpha, transmission: the classification's entries corrected for the slice spacing.
   SliceTable(const ClassifiedVolume& cv, const std::vector<float>& alpha,
              const std::vector<float>& transmission)
       : stride(strideFor(2 + cv.k + cv.t_channels)),
-        rows(blendRows(cv, alpha.data(), transmission.data(), stride)) {}
+        rows(blendRows(cv, alpha.data(), transmission.data(), stride)),
+        white(cv.white) {
+    rows.resize(rows.size() + kSlack, 0.f);
+    white.resize(white.size() + kSlack, 0.f);
+  }
   const float* row(int e) const { return rows.data() + static_cast<std::size_t>(e) * stride; }
 };
 
