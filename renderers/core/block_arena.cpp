@@ -5,13 +5,11 @@
 #include <cstdlib>
 #include <new>
 
-#if defined(__linux__)
-#include <sys/mman.h>
-#endif
+#include "renderers/core/huge_pages.h"
 
 namespace svr {
 
-void BlockArena::Free::operator()(std::byte* p) const { std::free(p); }
+void BlockArena::Free::operator()(std::byte* p) const { releaseHugePages(p); }
 
 void* BlockArena::allocateBytes(std::size_t bytes, std::size_t align) {
   const std::size_t pad = (align - reinterpret_cast<std::uintptr_t>(next_) % align) % align;
@@ -19,11 +17,7 @@ void* BlockArena::allocateBytes(std::size_t bytes, std::size_t align) {
     // Whole huge pages, aligned to one, so that every page of the block can be a huge one.
     const std::size_t size =
         (std::max(bytes, kBlockBytes) + kHugePage - 1) / kHugePage * kHugePage;
-    auto* memory = static_cast<std::byte*>(std::aligned_alloc(kHugePage, size));
-    if (!memory) throw std::bad_alloc();
-#if defined(MADV_HUGEPAGE)
-    madvise(memory, size, MADV_HUGEPAGE);  // advice only: without huge pages it still works
-#endif
+    auto* memory = static_cast<std::byte*>(allocateHugePages(size));
     blocks_.emplace_back(memory);
     next_ = memory, left_ = size;
     return allocateBytes(bytes, align);

@@ -1,21 +1,19 @@
 #pragma once
 // Memory for many arrays that are filled once and freed together (shear-warp's voxel records:
-// tens of MiB a principal axis, in a few hundred slices), taken from large blocks. Each block
-// asks the kernel for transparent huge pages (madvise mode), so that first touching it costs a
-// page fault per 2 MiB instead of one per 4 KiB: in this machine's VM a 4 KiB fault costs
-// about as much as writing the page, and the encoder's records took 20–30 ms of faults for
-// 36 MiB.
+// tens of MiB a principal axis, in a few hundred slices), taken from large blocks on huge pages
+// (huge_pages.h): the encoder's records took 20–30 ms of 4 KiB page faults for 36 MiB.
 
 #include <cstddef>
 #include <memory>
 #include <type_traits>
 #include <vector>
 
+#include "renderers/core/huge_pages.h"
+
 namespace svr {
 
 class BlockArena {
  public:
-  static constexpr std::size_t kHugePage = std::size_t{2} << 20;
   static constexpr std::size_t kBlockBytes = 2 * kHugePage;  // larger requests get their own
 
   // Uninitialised room for n objects of a trivially destructible type; valid until the arena

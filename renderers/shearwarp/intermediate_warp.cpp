@@ -90,12 +90,23 @@ void warpToFinal(const IntermediateImage& im, const ShearWarpFactorization& f,
     const std::size_t row_index = static_cast<std::size_t>(y) * width;
     // Inside: all four taps in the image and both coordinates ≥ 0, so truncation is the floor
     // (std::floor is a libm call on the baseline x86-64 target).
+    // Most rotations walk the intermediate image across its rows, which the hardware does not
+    // prefetch, and the image was written band by band and has mostly left the caches: each
+    // pixel asks for the taps of the pixel kAhead to its right.
+    constexpr int kAhead = 64;
     for (int x = inner0; x < inner1; ++x) {
       const double px = x + 0.5;
       const double u = u_row + f.warp_u[1] * px, v = v_row + f.warp_v[1] * px;
       const int iu = static_cast<int>(u), iv = static_cast<int>(v);
       const float* p00 = im.pixel(iu, iv);
       const float* p01 = p00 + row_stride;
+      if (x + kAhead < inner1) {
+        const double ahead = px + kAhead;
+        const float* q = im.pixel(static_cast<int>(u_row + f.warp_u[1] * ahead),
+                                  static_cast<int>(v_row + f.warp_v[1] * ahead));
+        __builtin_prefetch(q);
+        __builtin_prefetch(q + row_stride);
+      }
       blend(row_index + x, p00, p00 + channels, p01, p01 + channels, static_cast<float>(u - iu),
             static_cast<float>(v - iv));
     }

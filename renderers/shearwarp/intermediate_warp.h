@@ -5,6 +5,7 @@
 
 #include <vector>
 
+#include "renderers/core/huge_pages.h"
 #include "renderers/shearwarp/shear_warp_factorization.h"
 #include "spectral/light_independent_image.h"
 
@@ -30,7 +31,9 @@ struct IntermediateImage {
   }
   // Floats past the last pixel, so that the warp may read any pixel's channels four at a time.
   static constexpr int kSlack = 3;
-  std::vector<float> data;  // starts empty: S = 0, T = 1 (then kSlack floats of slack)
+  // Starts empty: S = 0, T = 1 (then kSlack floats of slack). On huge pages: the warp crosses
+  // its rows at most steps under rotation.
+  std::vector<float, HugePageAllocator<float>> data;
 };
 
 // Every final pixel takes the bilinear interpolation of the intermediate pixels around its

@@ -246,46 +246,44 @@ SVR_SHEARWARP_INLINE void compositeSlice(const CompositeJob& job, int v, int sli
         c[0] = rec0 + i0, c[1] = rec0 + i0 + 1, c[2] = rec1 + i0, c[3] = rec1 + i0 + 1;
         w[0] = (1 - fi) * (1 - fj), w[1] = fi * (1 - fj), w[2] = (1 - fi) * fj, w[3] = fi * fj;
       };
-      // Stage 1: the records (bin coordinate and gradient, one vector each) interpolated, and
-      // the gradients' Phong terms four pixels at a time, for every pixel of the batch (lanes
-      // past the batch's end shade a zero gradient and are not used).
-      alignas(16) float bins[kMax], gx[kMax], gy[kMax], gz[kMax], shade[kMax], highlight[kMax];
-      const int padded = (b.count + 3) / 4 * 4;
-      // Bilinear as three lerps (along i in both rows, then along j): no corner weights.
+      // Stage 1, four pixels at a time: the records (bin coordinate and gradient, one vector
+      // each) interpolated, turned into a vector of bins and one of each gradient component,
+      // then the Phong terms and the two table entries around each bin. Lanes past the batch's
+      // end repeat its first pixel and are not used.
+      alignas(16) float shade[kMax], highlight[kMax], fracs[kMax];
+      alignas(16) int e0s[kMax], e1s[kMax];
       static_assert(sizeof(VoxelRecord) == sizeof(Float4));
       const Float4 fj4 = splat4(fj);
-      for (int p = 0; p < b.count; ++p) {
+      // Bilinear as three lerps (along i in both rows, then along j): no corner weights.
+      const auto blended = [&](int p) {
         const int i0 = b.i0[p];
         __builtin_prefetch(rec2 + i0);
         const Float4 fi4 = splat4(b.fi[p]);
         const Float4 a0 = load4(&rec0[i0].bin), a1 = load4(&rec0[i0 + 1].bin);
         const Float4 b0 = load4(&rec1[i0].bin), b1 = load4(&rec1[i0 + 1].bin);
         const Float4 top = a0 + fi4 * (a1 - a0), bottom = b0 + fi4 * (b1 - b0);
-        const Float4 r = top + fj4 * (bottom - top);
-        bins[p] = r[0], gx[p] = r[1], gy[p] = r[2], gz[p] = r[3];
-      }
-      for (int p = b.count; p < padded; ++p) gx[p] = gy[p] = gz[p] = 0.f;
-      for (int p = 0; p < padded; p += 4) {
+        return top + fj4 * (bottom - top);
+      };
+      for (int p = 0; p < b.count; p += 4) {
+        const auto lane = [&](int n) { return p + n < b.count ? p + n : 0; };
+        Float4 bins = blended(p), gx = blended(lane(1)), gy = blended(lane(2)),
+               gz = blended(lane(3));
+        transpose4(bins, gx, gy, gz);
         Float4 lit, shiny;
-        phong4(job.phong, load4(gx + p), load4(gy + p), load4(gz + p), lit, shiny);
+        phong4(job.phong, gx, gy, gz, lit, shiny);
         store4(shade + p, lit);
         store4(highlight + p, shiny);
-      }
-      // Stage 2: classify (the two entries around the interpolated bin coordinate, four pixels
-      // at a time; or the corners' labels blended) and composite.
-      alignas(16) int e0s[kMax], e1s[kMax];
-      alignas(16) float fracs[kMax];
-      if (!cv.labels) {
-        for (int p = b.count; p < padded; ++p) bins[p] = 0.f;
-        for (int p = 0; p < padded; p += 4) {
+        if (!cv.labels) {
           Int4 e0, e1;
           Float4 frac;
-          entriesOfBins(cv, load4(bins + p), e0, e1, frac);
+          entriesOfBins(cv, bins, e0, e1, frac);
           std::memcpy(e0s + p, &e0, sizeof e0);
           std::memcpy(e1s + p, &e1, sizeof e1);
           store4(fracs + p, frac);
         }
       }
+      // Stage 2: classify (the entries found above, or the corners' labels blended) and
+      // composite.
       for (int p = 0; p < b.count; ++p) {
         float* S = row + static_cast<std::size_t>(b.u[p]) * stride;
         float tmax;
