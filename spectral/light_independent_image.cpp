@@ -11,6 +11,17 @@ namespace svr {
 
 LightIndependentImage::LightIndependentImage(int width, int height, int channels,
                                              int transmittance_channels, SampleStorage storage)
+    : LightIndependentImage(width, height, channels, transmittance_channels, storage, Shape{}) {
+  const size_t n = pixels() * planes();
+  if (storage == SampleStorage::kFloat)
+    float_samples_.assign(n, 0.0f);
+  else
+    half_samples_.assign(n, 0);
+}
+
+LightIndependentImage::LightIndependentImage(int width, int height, int channels,
+                                             int transmittance_channels, SampleStorage storage,
+                                             Shape)
     : width_(width),
       height_(height),
       channels_(channels),
@@ -26,11 +37,14 @@ LightIndependentImage::LightIndependentImage(int width, int height, int channels
       transmittance_channels != channels)
     throw Error(fmt::format("light-independent image: {} transmittance channels; expected 0, 1 "
                             "or {}", transmittance_channels, channels));
-  const size_t n = pixels() * planes();
-  if (storage == SampleStorage::kFloat)
-    float_samples_.assign(n, 0.0f);
-  else
-    half_samples_.assign(n, 0);
+}
+
+LightIndependentImage LightIndependentImage::unset(int width, int height, int channels,
+                                                  int transmittance_channels) {
+  LightIndependentImage image(width, height, channels, transmittance_channels,
+                              SampleStorage::kFloat, Shape{});
+  image.float_samples_.resize(image.pixels() * image.planes());  // unset (UnsetAllocator)
+  return image;
 }
 
 std::span<float> LightIndependentImage::planeFloat(int p) {

@@ -6,10 +6,32 @@
 // through memory and vectorises across pixels. Samples are float, or half to halve the bytes.
 
 #include <cstdint>
+#include <memory>
 #include <span>
 #include <vector>
 
 namespace svr {
+
+// A vector's allocator that leaves new floats unset (default-initialised), so that an image
+// its renderer writes in full is not also zeroed first.
+template <class T>
+struct UnsetAllocator : std::allocator<T> {
+  template <class U>
+  struct rebind {
+    using other = UnsetAllocator<U>;
+  };
+  UnsetAllocator() = default;
+  template <class U>
+  UnsetAllocator(const UnsetAllocator<U>&) {}
+  template <class U>
+  void construct(U* p) {
+    ::new (static_cast<void*>(p)) U;
+  }
+  template <class U, class... Args>
+  void construct(U* p, Args&&... args) {
+    ::new (static_cast<void*>(p)) U(std::forward<Args>(args)...);
+  }
+};
 
 enum class SampleStorage { kFloat, kHalf };
 
@@ -19,6 +41,10 @@ class LightIndependentImage {
   // Throws svr::Error for non-positive or absurd sizes.
   LightIndependentImage(int width, int height, int channels, int transmittance_channels,
                         SampleStorage storage = SampleStorage::kFloat);
+  // Float planes whose samples are unset: for a renderer that writes every sample (shear-warp's
+  // warp), which would otherwise pay for zeroing the image first.
+  static LightIndependentImage unset(int width, int height, int channels,
+                                     int transmittance_channels);
   // Bytes of such an image's planes as floats, for memory-budget checks before allocating.
   static std::uint64_t bytesFor(int width, int height, int channels, int transmittance_channels) {
     return std::uint64_t(width) * std::uint64_t(height) *
@@ -50,9 +76,13 @@ class LightIndependentImage {
   size_t bytes() const;
 
  private:
+  struct Shape {};  // the size checked and set, no samples allocated
+  LightIndependentImage(int width, int height, int channels, int transmittance_channels,
+                        SampleStorage storage, Shape);
+
   int width_ = 0, height_ = 0, channels_ = 0, transmittance_channels_ = 0;
   SampleStorage storage_ = SampleStorage::kFloat;
-  std::vector<float> float_samples_;
+  std::vector<float, UnsetAllocator<float>> float_samples_;
   std::vector<std::uint16_t> half_samples_;
 };
 

@@ -205,15 +205,22 @@ SVR_SHEARWARP_INLINE void forEachSample(const CompositeJob& job, int v, int slic
     const int u_end = std::min(
         {firstPixel(run.end + oi, base_i, inv_scale, f.scale, run.end == n_i - 1), width,
          own_end});
+    // The count in a register (flush, out of line, sees it only when called).
+    int n = batch.count;
     for (int u = nextLive(links, u_begin); u < u_end; u = nextLive(links, u + 1)) {
       const double qi = (u * inv_scale + base_i) - oi;
       const int i0 = std::clamp(static_cast<int>(qi), run.begin, run.end - 1);
-      const int p = batch.count++;
-      batch.u[p] = u;
-      batch.i0[p] = i0;
-      batch.fi[p] = std::clamp(static_cast<float>(qi - i0), 0.f, 1.f);
-      if (batch.count == SampleBatch::kMax) flush();
+      batch.u[n] = u;
+      batch.i0[n] = i0;
+      // Clamped by max and min, without branches (std::clamp's value for any finite qi).
+      batch.fi[n] = std::min(std::max(static_cast<float>(qi - i0), 0.f), 1.f);
+      if (++n == SampleBatch::kMax) {
+        batch.count = n;
+        flush();
+        n = 0;
+      }
     }
+    batch.count = n;
   }
   if (batch.count > 0) flush();
 }

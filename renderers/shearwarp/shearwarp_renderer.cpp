@@ -105,8 +105,9 @@ LightIndependentImage ShearWarpRenderer::finishBricks(LightIndependentImage comp
     const float* plane = composited.planeFloat(p).data();
     for (std::size_t i = 0; i < n; ++i) intermediate.data[i * planes + p] = plane[i];
   }
-  LightIndependentImage image(req.width, req.height, cv.k, cv.t_channels);
-  shearwarp::warpToFinal(intermediate, view, image);
+  LightIndependentImage image =
+      LightIndependentImage::unset(req.width, req.height, cv.k, cv.t_channels);
+  shearwarp::warpToFinal(intermediate, view, image);  // writes every sample
   return image;
 }
 
@@ -196,8 +197,8 @@ LightIndependentImage ShearWarpRenderer::renderImpl(const RenderRequest& req,
   if (cv.brick) {
     image = planarOf(intermediate);  // composited with the other bricks, then finishBricks
   } else {
-    image = LightIndependentImage(req.width, req.height, cv.k, cv.t_channels);
-    shearwarp::warpToFinal(intermediate, view, image);
+    image = LightIndependentImage::unset(req.width, req.height, cv.k, cv.t_channels);
+    shearwarp::warpToFinal(intermediate, view, image);  // writes every sample
   }
   return image;
 }

@@ -46,6 +46,16 @@ TEST(LightIndependentImage, RejectsImpossibleSizes) {
   EXPECT_THROW(LightIndependentImage(1 << 20, 10, 3, 0), Error);
   EXPECT_THROW(LightIndependentImage(10, 10, 0, 0), Error);
   EXPECT_THROW(LightIndependentImage(10, 10, 6, 2), Error);  // T is 0, 1 or k channels
+  // An image whose renderer writes every sample: the same checks, and float planes of the size.
+  EXPECT_THROW(LightIndependentImage::unset(0, 10, 3, 1), Error);
+  EXPECT_THROW(LightIndependentImage::unset(10, 10, 6, 2), Error);
+  LightIndependentImage unset = LightIndependentImage::unset(5, 3, 6, 1);
+  EXPECT_EQ(unset.storage(), SampleStorage::kFloat);
+  EXPECT_EQ(unset.planes(), 7);
+  EXPECT_EQ(unset.planeFloat(6).size(), 15u);
+  EXPECT_EQ(unset.planeFloat(6).data(), unset.planeFloat(0).data() + 6 * 15);
+  unset.setSample(6, 4, 2, 0.5f);
+  EXPECT_EQ(unset.transmittance(0, 4, 2), 0.5f);
 }
 
 }  // namespace
