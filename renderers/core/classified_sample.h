@@ -173,15 +173,6 @@ struct PhongSetup {
   return result;
 }
 
-// wholePower over four lanes: the same multiplications in the same order, so each lane equals
-// wholePower's result.
-[[gnu::always_inline]] inline Float4 wholePower4(Float4 x, int n) {
-  Float4 result = splat4(1.f);
-  for (Float4 square = x; n > 0; n >>= 1, square *= square)
-    if (n & 1) result *= square;
-  return result;
-}
-
 // Normals are −∇f/|∇f|; where the gradient vanishes (inside a uniform region) there is no
 // surface, and the sample is lit fully and without highlight.
 [[gnu::always_inline]] inline PhongTerms phong(const PhongSetup& p, const float g[3]) {
@@ -198,28 +189,54 @@ struct PhongSetup {
   return {p.ambient + p.diffuse * std::abs(nl), highlight};
 }
 
-// phong for four gradients at once, one lane each (gx, gy, gz: their components): every lane
-// takes phong's operations in phong's order, so it equals phong's result bit for bit (the test
-// asserts it); lanes without a surface are selected afterwards instead of returned early.
+// phong for 4·N gradients at once, one lane each (gx[n], gy[n], gz[n]: their components): every
+// lane takes phong's operations in phong's order, so it equals phong's result bit for bit (the
+// test asserts it); lanes without a surface are selected afterwards instead of returned early.
+// The N vectors go through each step together, so that the highlight's squarings, a chain of
+// dependent multiplications, run N chains side by side.
+template <int N>
+[[gnu::always_inline]] inline void phongN(const PhongSetup& p, const Float4 (&gx)[N],
+                                          const Float4 (&gy)[N], const Float4 (&gz)[N],
+                                          Float4 (&shade)[N], Float4 (&highlight)[N]) {
+  Float4 len[N], nl[N], cos_h[N];
+  for (int n = 0; n < N; ++n) {
+    len[n] = sqrt4(gx[n] * gx[n] + gy[n] * gy[n] + gz[n] * gz[n]);
+    const Float4 inv_len = 1.f / len[n];
+    nl[n] = (gx[n] * p.light[0] + gy[n] * p.light[1] + gz[n] * p.light[2]) * inv_len;
+    const Float4 nh = (gx[n] * p.half[0] + gy[n] * p.half[1] + gz[n] * p.half[2]) * inv_len;
+    const Float4 abs_nh = abs4(nh);
+    cos_h[n] = 1.f < abs_nh ? splat4(1.f) : abs_nh;  // std::min(|nh|, 1)
+  }
+  Float4 power[N];
+  if (p.whole_shininess > 0) {
+    // wholePower4, N at a time.
+    Float4 square[N];
+    for (int n = 0; n < N; ++n) power[n] = splat4(1.f), square[n] = cos_h[n];
+    for (int e = p.whole_shininess; e > 0; e >>= 1) {
+      if (e & 1)
+        for (int n = 0; n < N; ++n) power[n] *= square[n];
+      for (int n = 0; n < N; ++n) square[n] *= square[n];
+    }
+  } else {
+    for (int n = 0; n < N; ++n)
+      for (int lane = 0; lane < 4; ++lane)
+        power[n][lane] =
+            cos_h[n][lane] > p.highlight_floor ? unitPower(cos_h[n][lane], p.shininess) : 0.f;
+  }
+  for (int n = 0; n < N; ++n) {
+    const auto lit = len[n] > 1e-6f;
+    const auto shiny = cos_h[n] > p.highlight_floor;
+    shade[n] = lit ? p.ambient + p.diffuse * abs4(nl[n]) : splat4(p.ambient + p.diffuse);
+    highlight[n] = (lit & shiny) ? p.specular * power[n] : splat4(0.f);
+  }
+}
+
 [[gnu::always_inline]] inline void phong4(const PhongSetup& p, Float4 gx, Float4 gy, Float4 gz,
                                           Float4& shade, Float4& highlight) {
-  const Float4 len = sqrt4(gx * gx + gy * gy + gz * gz);
-  const Float4 inv_len = 1.f / len;
-  const Float4 nl = (gx * p.light[0] + gy * p.light[1] + gz * p.light[2]) * inv_len;
-  const Float4 nh = (gx * p.half[0] + gy * p.half[1] + gz * p.half[2]) * inv_len;
-  const Float4 abs_nh = abs4(nh);
-  const Float4 cos_h = 1.f < abs_nh ? splat4(1.f) : abs_nh;  // std::min(|nh|, 1)
-  const auto lit = len > 1e-6f;
-  const auto shiny = cos_h > p.highlight_floor;
-  Float4 power;
-  if (p.whole_shininess > 0) {
-    power = wholePower4(cos_h, p.whole_shininess);
-  } else {
-    for (int lane = 0; lane < 4; ++lane)
-      power[lane] = shiny[lane] ? unitPower(cos_h[lane], p.shininess) : 0.f;
-  }
-  shade = lit ? p.ambient + p.diffuse * abs4(nl) : splat4(p.ambient + p.diffuse);
-  highlight = (lit & shiny) ? p.specular * power : splat4(0.f);
+  const Float4 x[1] = {gx}, y[1] = {gy}, z[1] = {gz};
+  Float4 s[1], h[1];
+  phongN<1>(p, x, y, z, s, h);
+  shade = s[0], highlight = h[0];
 }
 
 }  // namespace svr

@@ -80,55 +80,64 @@ void warpToFinal(const IntermediateImage& im, const ShearWarpFactorization& f,
     }
   };
 
+  // Tiles of kTileRows × kTileColumns output pixels: under rotation a row of output pixels
+  // walks across the intermediate image's rows, touching a new cache line at most steps, and
+  // the next output row reuses those lines only a whole row later; within a tile they are
+  // reused while they are still in the first-level cache.
+  constexpr int kTileRows = 8, kTileColumns = 32;
+  const int row_blocks = (height + kTileRows - 1) / kTileRows;
 #pragma omp parallel for schedule(static)
-  for (int y = 0; y < height; ++y) {
-    const double py = y + 0.5;
-    int inner0, inner1;
-    interiorRange(f, im, py, width, inner0, inner1);
-    // Along a row the warped coordinates are linear in px.
-    const double u_row = f.warp_u[0] + f.warp_u[2] * py, v_row = f.warp_v[0] + f.warp_v[2] * py;
-    const std::size_t row_index = static_cast<std::size_t>(y) * width;
+  for (int block = 0; block < row_blocks; ++block) {
+    const int y0 = block * kTileRows, y1 = std::min(y0 + kTileRows, height);
+    int inner0[kTileRows], inner1[kTileRows];
+    double u_row[kTileRows], v_row[kTileRows];
+    for (int y = y0; y < y1; ++y) {
+      const double py = y + 0.5;
+      interiorRange(f, im, py, width, inner0[y - y0], inner1[y - y0]);
+      // Along a row the warped coordinates are linear in px.
+      u_row[y - y0] = f.warp_u[0] + f.warp_u[2] * py;
+      v_row[y - y0] = f.warp_v[0] + f.warp_v[2] * py;
+    }
     // Inside: all four taps in the image and both coordinates ≥ 0, so truncation is the floor
     // (std::floor is a libm call on the baseline x86-64 target).
-    // Most rotations walk the intermediate image across its rows, which the hardware does not
-    // prefetch, and the image was written band by band and has mostly left the caches: each
-    // pixel asks for the taps of the pixel kAhead to its right.
-    constexpr int kAhead = 64;
-    for (int x = inner0; x < inner1; ++x) {
-      const double px = x + 0.5;
-      const double u = u_row + f.warp_u[1] * px, v = v_row + f.warp_v[1] * px;
-      const int iu = static_cast<int>(u), iv = static_cast<int>(v);
-      const float* p00 = im.pixel(iu, iv);
-      const float* p01 = p00 + row_stride;
-      if (x + kAhead < inner1) {
-        const double ahead = px + kAhead;
-        const float* q = im.pixel(static_cast<int>(u_row + f.warp_u[1] * ahead),
-                                  static_cast<int>(v_row + f.warp_v[1] * ahead));
-        __builtin_prefetch(q);
-        __builtin_prefetch(q + row_stride);
+    for (int x0 = 0; x0 < width; x0 += kTileColumns)
+      for (int y = y0; y < y1; ++y) {
+        const int r = y - y0;
+        const std::size_t row_index = static_cast<std::size_t>(y) * width;
+        const int end = std::min(x0 + kTileColumns, inner1[r]);
+        for (int x = std::max(x0, inner0[r]); x < end; ++x) {
+          const double px = x + 0.5;
+          const double u = u_row[r] + f.warp_u[1] * px, v = v_row[r] + f.warp_v[1] * px;
+          const int iu = static_cast<int>(u), iv = static_cast<int>(v);
+          const float* p00 = im.pixel(iu, iv);
+          const float* p01 = p00 + row_stride;
+          blend(row_index + x, p00, p00 + channels, p01, p01 + channels,
+                static_cast<float>(u - iu), static_cast<float>(v - iv));
+        }
       }
-      blend(row_index + x, p00, p00 + channels, p01, p01 + channels, static_cast<float>(u - iu),
-            static_cast<float>(v - iv));
-    }
     // The border pixels, with every tap checked.
-    const auto border = [&](int x) {
-      const double px = x + 0.5;
-      const double u = u_row + f.warp_u[1] * px, v = v_row + f.warp_v[1] * px;
-      if (!(u >= -1.0 && v >= -1.0 && u < im.width && v < im.height)) {  // no tap inside
-        for (int c = 0; c < channels; ++c) planes[c * pixels + row_index + x] = empty[c];
-        return;
-      }
-      const double uf = std::floor(u), vf = std::floor(v);
-      const int u0 = static_cast<int>(uf), v0 = static_cast<int>(vf);
-      const auto tap = [&](int uu, int vv) {
-        return uu >= 0 && vv >= 0 && uu < im.width && vv < im.height ? im.pixel(uu, vv)
-                                                                      : empty.data();
+    for (int y = y0; y < y1; ++y) {
+      const int r = y - y0;
+      const std::size_t row_index = static_cast<std::size_t>(y) * width;
+      const auto border = [&](int x) {
+        const double px = x + 0.5;
+        const double u = u_row[r] + f.warp_u[1] * px, v = v_row[r] + f.warp_v[1] * px;
+        if (!(u >= -1.0 && v >= -1.0 && u < im.width && v < im.height)) {  // no tap inside
+          for (int c = 0; c < channels; ++c) planes[c * pixels + row_index + x] = empty[c];
+          return;
+        }
+        const double uf = std::floor(u), vf = std::floor(v);
+        const int u0 = static_cast<int>(uf), v0 = static_cast<int>(vf);
+        const auto tap = [&](int uu, int vv) {
+          return uu >= 0 && vv >= 0 && uu < im.width && vv < im.height ? im.pixel(uu, vv)
+                                                                        : empty.data();
+        };
+        blend(row_index + x, tap(u0, v0), tap(u0 + 1, v0), tap(u0, v0 + 1),
+              tap(u0 + 1, v0 + 1), static_cast<float>(u - uf), static_cast<float>(v - vf));
       };
-      blend(row_index + x, tap(u0, v0), tap(u0 + 1, v0), tap(u0, v0 + 1), tap(u0 + 1, v0 + 1),
-            static_cast<float>(u - uf), static_cast<float>(v - vf));
-    };
-    for (int x = 0; x < inner0; ++x) border(x);
-    for (int x = std::max(inner1, inner0); x < width; ++x) border(x);
+      for (int x = 0; x < inner0[r]; ++x) border(x);
+      for (int x = std::max(inner1[r], inner0[r]); x < width; ++x) border(x);
+    }
   }
 }
 

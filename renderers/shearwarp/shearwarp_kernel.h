@@ -253,10 +253,10 @@ SVR_SHEARWARP_INLINE void compositeSlice(const CompositeJob& job, int v, int sli
         c[0] = rec0 + i0, c[1] = rec0 + i0 + 1, c[2] = rec1 + i0, c[3] = rec1 + i0 + 1;
         w[0] = (1 - fi) * (1 - fj), w[1] = fi * (1 - fj), w[2] = (1 - fi) * fj, w[3] = fi * fj;
       };
-      // Stage 1, four pixels at a time: the records (bin coordinate and gradient, one vector
-      // each) interpolated, turned into a vector of bins and one of each gradient component,
-      // then the Phong terms and the two table entries around each bin. Lanes past the batch's
-      // end repeat its first pixel and are not used.
+      // Stage 1, eight pixels at a time: the records (bin coordinate and gradient, one vector
+      // each) interpolated, turned into vectors of bins and of each gradient component (four
+      // pixels a vector), then the Phong terms and the two table entries around each bin.
+      // Lanes past the batch's end repeat its first pixel and are not used.
       alignas(16) float shade[kMax], highlight[kMax], fracs[kMax];
       alignas(16) int e0s[kMax], e1s[kMax];
       static_assert(sizeof(VoxelRecord) == sizeof(Float4));
@@ -271,22 +271,27 @@ SVR_SHEARWARP_INLINE void compositeSlice(const CompositeJob& job, int v, int sli
         const Float4 top = a0 + fi4 * (a1 - a0), bottom = b0 + fi4 * (b1 - b0);
         return top + fj4 * (bottom - top);
       };
-      for (int p = 0; p < b.count; p += 4) {
+      for (int p = 0; p < b.count; p += 8) {
         const auto lane = [&](int n) { return p + n < b.count ? p + n : 0; };
-        Float4 bins = blended(p), gx = blended(lane(1)), gy = blended(lane(2)),
-               gz = blended(lane(3));
-        transpose4(bins, gx, gy, gz);
-        Float4 lit, shiny;
-        phong4(job.phong, gx, gy, gz, lit, shiny);
-        store4(shade + p, lit);
-        store4(highlight + p, shiny);
-        if (!cv.labels) {
-          Int4 e0, e1;
-          Float4 frac;
-          entriesOfBins(cv, bins, e0, e1, frac);
-          std::memcpy(e0s + p, &e0, sizeof e0);
-          std::memcpy(e1s + p, &e1, sizeof e1);
-          store4(fracs + p, frac);
+        Float4 bins[2], gx[2], gy[2], gz[2], lit[2], shiny[2];
+        for (int h = 0; h < 2; ++h) {
+          bins[h] = blended(lane(4 * h)), gx[h] = blended(lane(4 * h + 1));
+          gy[h] = blended(lane(4 * h + 2)), gz[h] = blended(lane(4 * h + 3));
+          transpose4(bins[h], gx[h], gy[h], gz[h]);
+        }
+        phongN<2>(job.phong, gx, gy, gz, lit, shiny);
+        for (int h = 0; h < 2; ++h) {
+          const int q = p + 4 * h;
+          store4(shade + q, lit[h]);
+          store4(highlight + q, shiny[h]);
+          if (!cv.labels) {
+            Int4 e0, e1;
+            Float4 frac;
+            entriesOfBins(cv, bins[h], e0, e1, frac);
+            std::memcpy(e0s + q, &e0, sizeof e0);
+            std::memcpy(e1s + q, &e1, sizeof e1);
+            store4(fracs + q, frac);
+          }
         }
       }
       // Stage 2: classify (the entries found above, or the corners' labels blended) and

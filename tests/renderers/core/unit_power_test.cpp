@@ -70,8 +70,8 @@ TEST(WholePower, PhongUsesItForWholeShininessOnly) {
   }
 }
 
-// phong4 takes phong's operations in phong's order per lane: bit-equal results, for whole and
-// fractional shininess, zero and tiny gradients (no surface), and gradients on both sides.
+// phong4 and phongN take phong's operations in phong's order per lane: bit-equal results, for
+// whole and fractional shininess, zero and tiny gradients (no surface), and gradients on both sides.
 TEST(Phong4, EachLaneEqualsPhong) {
   const glm::dvec3 light = glm::normalize(glm::dvec3(0.3, -0.5, 0.8));
   const glm::dvec3 half = glm::normalize(light + glm::dvec3(0, 0, 1));
@@ -94,11 +94,23 @@ TEST(Phong4, EachLaneEqualsPhong) {
         for (int a = 0; a < 3; ++a) g[a][2] = -static_cast<float>(half[a]);
       Float4 shade, highlight;
       phong4(p, load4(g[0]), load4(g[1]), load4(g[2]), shade, highlight);
+      // Two vectors at once (the shear-warp kernel's phongN<2>): the second holds the lanes
+      // reversed, and each lane still equals phong.
+      const auto reversed = [](Float4 v) { return __builtin_shufflevector(v, v, 3, 2, 1, 0); };
+      const Float4 x[2] = {load4(g[0]), reversed(load4(g[0]))};
+      const Float4 y[2] = {load4(g[1]), reversed(load4(g[1]))};
+      const Float4 z[2] = {load4(g[2]), reversed(load4(g[2]))};
+      Float4 shades[2], highlights[2];
+      phongN<2>(p, x, y, z, shades, highlights);
       for (int lane = 0; lane < 4; ++lane) {
         const float one[3] = {g[0][lane], g[1][lane], g[2][lane]};
         const PhongTerms expected = phong(p, one);
         ASSERT_EQ(shade[lane], expected.shade) << s << " " << round << " " << lane;
         ASSERT_EQ(highlight[lane], expected.highlight) << s << " " << round << " " << lane;
+        ASSERT_EQ(shades[0][lane], expected.shade) << s << " " << round << " " << lane;
+        ASSERT_EQ(highlights[0][lane], expected.highlight) << s << " " << round << " " << lane;
+        ASSERT_EQ(shades[1][3 - lane], expected.shade) << s << " " << round << " " << lane;
+        ASSERT_EQ(highlights[1][3 - lane], expected.highlight) << s << " " << round << " " << lane;
       }
     }
   }
