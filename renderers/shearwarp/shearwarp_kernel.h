@@ -207,28 +207,18 @@ SVR_SHEARWARP_INLINE void forEachSample(const CompositeJob& job, int v, int slic
          own_end});
     // The count in a register (flush, out of line, sees it only when called).
     int n = batch.count;
-    for (int u = nextLive(links, u_begin); u < u_end;) {
-      // The live pixels from u on (links[w] == w), as many as the batch has room for; then
-      // their cells and fractions in a loop without branches, which the compiler vectorises.
-      const int limit = std::min(u_end, u + (SampleBatch::kMax - n));
-      int span_end = u + 1;
-      while (span_end < limit && links[span_end] == span_end) ++span_end;
-      for (int m = 0; m < span_end - u; ++m) {
-        const int w = u + m;
-        const double qi = (w * inv_scale + base_i) - oi;
-        const int i0 = std::clamp(static_cast<int>(qi), run.begin, run.end - 1);
-        batch.u[n + m] = w;
-        batch.i0[n + m] = i0;
-        // Clamped by max and min, without branches (std::clamp's value for any finite qi).
-        batch.fi[n + m] = std::min(std::max(static_cast<float>(qi - i0), 0.f), 1.f);
-      }
-      n += span_end - u;
-      if (n == SampleBatch::kMax) {
+    for (int u = nextLive(links, u_begin); u < u_end; u = nextLive(links, u + 1)) {
+      const double qi = (u * inv_scale + base_i) - oi;
+      const int i0 = std::clamp(static_cast<int>(qi), run.begin, run.end - 1);
+      batch.u[n] = u;
+      batch.i0[n] = i0;
+      // Clamped by max and min, without branches (std::clamp's value for any finite qi).
+      batch.fi[n] = std::min(std::max(static_cast<float>(qi - i0), 0.f), 1.f);
+      if (++n == SampleBatch::kMax) {
         batch.count = n;
         flush();
         n = 0;
       }
-      u = nextLive(links, span_end);
     }
     batch.count = n;
   }
