@@ -126,9 +126,20 @@ SVR_SHEARWARP_INLINE float compositeSample(float* S, int k, const float* r0, con
     int ch = 0;
     for (; ch < k && ch + 4 <= k + kt; ch += 4) {
       const Float4 s = load4(S + ch);
+      const Float4 c = lerp4(2 + ch);
       const Float4 t = kSpectralT ? load4(T + ch) : t1;
-      const Float4 lit = s + t * (lerp4(2 + ch) * shade4 + load4(white + ch) * hs4);
-      store4(S + ch, ch + 4 <= k ? lit : firstLanes(lit, s, k - ch));
+      const Float4 lit = s + t * (c * shade4 + load4(white + ch) * hs4);
+      if (ch + 4 <= k) {
+        store4(S + ch, lit);
+      } else if (!kSpectralT) {
+        // The vector ends with the pixel's one T (lane 3 = k − ch), and c's lane 3 is its t:
+        // T ⊙= t done here, as the scalar loop below would.
+        const Float4 both = firstLanes(lit, s * c, k - ch);
+        store4(S + ch, both);
+        return both[3];
+      } else {
+        store4(S + ch, firstLanes(lit, s, k - ch));
+      }
     }
     for (; ch < k; ++ch)
       S[ch] += T[kSpectralT ? ch : 0] * (lerp1(2 + ch) * shade + white[ch] * hs);
