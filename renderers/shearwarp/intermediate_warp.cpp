@@ -13,16 +13,17 @@ IntermediateImage::IntermediateImage(int w, int h, int s, int t) {
 }
 
 void IntermediateImage::resize(int w, int h, int s, int t) {
-  width = w, height = h, s_channels = s, t_channels = t;
-  data.resize(static_cast<std::size_t>(w) * h * (s + t) + kSlack);
+  width = w, height = h, s_channels = s, t_channels = t, stride = strideFor(s, t);
+  data.resize(static_cast<std::size_t>(w) * h * stride + kSlack);
 }
 
 void IntermediateImage::clearRows(int v0, int v1) {
   const int s = s_channels, t = t_channels;
   float* d = pixel(0, v0);
-  for (std::size_t p = 0; p < static_cast<std::size_t>(v1 - v0) * width; ++p, d += s + t) {
+  for (std::size_t p = 0; p < static_cast<std::size_t>(v1 - v0) * width; ++p, d += stride) {
     std::fill_n(d, s, 0.f);
     std::fill_n(d + s, t, 1.f);
+    std::fill_n(d + s + t, stride - s - t, 0.f);
   }
 }
 
@@ -61,11 +62,11 @@ void warpToFinal(const IntermediateImage& im, const ShearWarpFactorization& f,
   const int width = out.width(), height = out.height();
   // Empty space, for taps outside the intermediate image (padded as the image is, so that it
   // too may be read four channels at a time).
-  std::vector<float> empty(channels + IntermediateImage::kSlack, 0.f);
+  std::vector<float> empty(im.stride + IntermediateImage::kSlack, 0.f);
   std::fill(empty.begin() + im.s_channels, empty.begin() + channels, 1.f);
-  const std::size_t row_stride = static_cast<std::size_t>(im.width) * channels;
+  const std::size_t row_stride = static_cast<std::size_t>(im.width) * im.stride;
   // Output pixel `at` from four taps: their channels blended four at a time; the lanes past
-  // the last channel read the next pixel or the slack and are not stored.
+  // the last channel read the pixel's padding and are not stored.
   const auto blend = [&](std::size_t at, const float* p00, const float* p10, const float* p01,
                          const float* p11, float fu, float fv) {
     const Float4 fu4 = splat4(fu), fv4 = splat4(fv);
@@ -111,7 +112,7 @@ void warpToFinal(const IntermediateImage& im, const ShearWarpFactorization& f,
           const int iu = static_cast<int>(u), iv = static_cast<int>(v);
           const float* p00 = im.pixel(iu, iv);
           const float* p01 = p00 + row_stride;
-          blend(row_index + x, p00, p00 + channels, p01, p01 + channels,
+          blend(row_index + x, p00, p00 + im.stride, p01, p01 + im.stride,
                 static_cast<float>(u - iu), static_cast<float>(v - iv));
         }
       }

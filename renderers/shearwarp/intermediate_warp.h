@@ -1,7 +1,9 @@
 #pragma once
 // The intermediate image of shear-warp (every channel: k of S, then 1 or k of T, interleaved
-// per pixel so compositing touches one cache line per pixel) and the 2D affine warp that
-// resamples it, bilinearly, into the final light-independent image.
+// per pixel so compositing touches one cache line per pixel, and the pixel padded to a
+// multiple of four floats, so that compositing takes S four channels at a time up to its last
+// channel) and the 2D affine warp that resamples it, bilinearly, into the final
+// light-independent image.
 
 #include <vector>
 
@@ -22,17 +24,21 @@ struct IntermediateImage {
   // Rows [v0, v1) empty again.
   void clearRows(int v0, int v1);
   int width = 0, height = 0, s_channels = 0, t_channels = 0;
+  int stride = 0;  // floats a pixel: its channels and zeros up to a multiple of four
   int channels() const { return s_channels + t_channels; }
+  static int strideFor(int s_channels, int t_channels) {
+    return (s_channels + t_channels + 3) / 4 * 4;
+  }
   float* pixel(int u, int v) {
-    return data.data() + (static_cast<std::size_t>(v) * width + u) * channels();
+    return data.data() + (static_cast<std::size_t>(v) * width + u) * stride;
   }
   const float* pixel(int u, int v) const {
-    return data.data() + (static_cast<std::size_t>(v) * width + u) * channels();
+    return data.data() + (static_cast<std::size_t>(v) * width + u) * stride;
   }
-  // Floats past the last pixel, so that the warp may read any pixel's channels four at a time.
+  // Floats past the last pixel, so that a pixel's T may be read four channels at a time.
   static constexpr int kSlack = 3;
-  // Starts empty: S = 0, T = 1 (then kSlack floats of slack). On huge pages: the warp crosses
-  // its rows at most steps under rotation.
+  // Starts empty: S = 0, T = 1, padding 0 (then kSlack floats of slack). On huge pages: the
+  // warp crosses its rows at most steps under rotation.
   std::vector<float, HugePageAllocator<float>> data;
 };
 

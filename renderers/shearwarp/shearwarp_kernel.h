@@ -101,13 +101,14 @@ SVR_SHEARWARP_INLINE float maxLanes(float m, Float4 v) {
   return m;
 }
 
-// One sample composited into its pixel (S: k channels, then T: 1 or k) from its classification,
-// a table row's channels (acc: α, α·s, α·ρ, t; or two rows r0, r1 blended by frac, read in
-// place): S += T ⊙ (α·ρ shade + white α·s highlight) where α > 0, then T ⊙= t. Four channels at
-// a time, each lane with the scalar loop's arithmetic, so that fixed-k and dynamic-k agree bit
-// for bit whichever split they take. A last partial vector of S is taken whole where the pixel's
-// own T follows it (its T lanes stored back unchanged, before T is updated), the rest one
-// channel at a time. Returns the largest T. white: k coefficients and SliceTable::kSlack more.
+// One sample composited into its pixel (S: k channels, then T: 1 or k, then padding to a
+// multiple of four floats) from its classification, a table row's channels (acc: α, α·s, α·ρ,
+// t; or two rows r0, r1 blended by frac, read in place): S += T ⊙ (α·ρ shade + white α·s
+// highlight) where α > 0, then T ⊙= t. Four channels at a time, each lane with the scalar
+// arithmetic, so that fixed-k and dynamic-k agree bit for bit. S's last vector, where partial,
+// ends in the pixel's own T or padding: those lanes are stored back unchanged (before T is
+// updated), or, with one T channel, updated there. Returns the largest T. white: k
+// coefficients and SliceTable::kSlack more.
 template <int K, bool kSpectralT>
 SVR_SHEARWARP_INLINE float compositeSample(float* S, int k, const float* r0, const float* r1,
                                            float frac, float shade, float highlight,
@@ -123,8 +124,7 @@ SVR_SHEARWARP_INLINE float compositeSample(float* S, int k, const float* r0, con
   if (lerp1(0) > 0.f) {  // α
     const float hs = highlight * lerp1(1);
     const Float4 shade4 = splat4(shade), hs4 = splat4(hs), t1 = splat4(T[0]);
-    int ch = 0;
-    for (; ch < k && ch + 4 <= k + kt; ch += 4) {
+    for (int ch = 0; ch < k; ch += 4) {
       const Float4 s = load4(S + ch);
       const Float4 c = lerp4(2 + ch);
       const Float4 t = kSpectralT ? load4(T + ch) : t1;
@@ -132,17 +132,15 @@ SVR_SHEARWARP_INLINE float compositeSample(float* S, int k, const float* r0, con
       if (ch + 4 <= k) {
         store4(S + ch, lit);
       } else if (!kSpectralT) {
-        // The vector ends with the pixel's one T (lane 3 = k − ch), and c's lane 3 is its t:
-        // T ⊙= t done here, as the scalar loop below would.
+        // The vector holds the pixel's one T (lane k − ch, then padding), and c's lane there
+        // is its t: T ⊙= t done here, as the loop below would (the padding stays 0).
         const Float4 both = firstLanes(lit, s * c, k - ch);
         store4(S + ch, both);
-        return both[3];
+        return both[k - ch];
       } else {
         store4(S + ch, firstLanes(lit, s, k - ch));
       }
     }
-    for (; ch < k; ++ch)
-      S[ch] += T[kSpectralT ? ch : 0] * (lerp1(2 + ch) * shade + white[ch] * hs);
   }
   float tmax = 0.f;
   int ch = 0;
@@ -249,7 +247,7 @@ SVR_SHEARWARP_INLINE void compositeSlice(const CompositeJob& job, int v, int sli
   constexpr int kMax = SampleBatch::kMax;
   const float* white = table.white.data();
   float* row = job.image->pixel(0, v);
-  const int stride = job.image->channels();
+  const int stride = job.image->stride;
   forEachSample(job, v, slice, links, [&](int j0, float fj) __attribute__((always_inline)) {
     // Voxel i of rows j0 and j0 + 1, for the i the cell runs touch.
     const VoxelRecord* rec0 = enc.rowRecords(slice, j0);
@@ -342,7 +340,7 @@ SVR_SHEARWARP_INLINE void compositeSlicePre(const CompositeJob& job, int v, int 
   const float* terms = job.shading->terms.data();
   const int rs = pre.stride();
   float* row = job.image->pixel(0, v);
-  const int stride = job.image->channels();
+  const int stride = job.image->stride;
   forEachSample(job, v, slice, links, [&](int j0, float fj) __attribute__((always_inline)) {
     const float* rec0 = pre.rowRecords(slice, j0);
     const float* rec1 = pre.rowRecords(slice, j0 + 1);

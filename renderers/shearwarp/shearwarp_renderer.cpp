@@ -79,7 +79,7 @@ LightIndependentImage planarOf(const shearwarp::IntermediateImage& im) {
   const std::size_t n = out.pixels();
   for (int p = 0; p < planes; ++p) {
     float* plane = out.planeFloat(p).data();
-    for (std::size_t i = 0; i < n; ++i) plane[i] = im.data[i * planes + p];
+    for (std::size_t i = 0; i < n; ++i) plane[i] = im.data[i * im.stride + p];
   }
   return out;
 }
@@ -103,7 +103,7 @@ LightIndependentImage ShearWarpRenderer::finishBricks(LightIndependentImage comp
   const std::size_t n = composited.pixels();
   for (int p = 0; p < planes; ++p) {
     const float* plane = composited.planeFloat(p).data();
-    for (std::size_t i = 0; i < n; ++i) intermediate.data[i * planes + p] = plane[i];
+    for (std::size_t i = 0; i < n; ++i) intermediate.data[i * intermediate.stride + p] = plane[i];
   }
   LightIndependentImage image =
       LightIndependentImage::unset(req.width, req.height, cv.k, cv.t_channels);
@@ -117,7 +117,8 @@ std::uint64_t ShearWarpRenderer::workingBytes(const RenderRequest& req,
   const shearwarp::ShearWarpFactorization view = shearwarp::factorizeView(
       req.camera, req.width, req.height, viewDims(cv), cv.spacing, options.integer("supersample"));
   return std::uint64_t(view.width) * std::uint64_t(view.height) *
-         std::uint64_t(cv.k + cv.t_channels) * sizeof(float);
+         std::uint64_t(shearwarp::IntermediateImage::strideFor(cv.k, cv.t_channels)) *
+         sizeof(float);
 }
 
 LightIndependentImage ShearWarpRenderer::renderImpl(const RenderRequest& req,
