@@ -200,6 +200,26 @@ SVR_SHEARWARP_INLINE void forEachSample(const CompositeJob& job, int v, int slic
   const int own_end = std::isfinite(job.hi[f.axis_i])
                           ? firstPixel(job.hi[f.axis_i], base_i, inv_scale, f.scale, false)
                           : width;
+  // With one intermediate pixel a voxel (supersample 1, the default) every sample of the
+  // scanline has the same fraction along i, and pixel u's cell is u + i_shift (before the
+  // clamp to its run): no arithmetic a pixel. (Each pixel's own (u + base_i) − oi rounds
+  // differently only within 2⁻⁴⁴ of the fraction, far below its float.)
+  const double q0 = base_i - oi;
+  int i_shift = static_cast<int>(q0);
+  if (i_shift > q0) --i_shift;  // the floor (std::floor is a libm call on the baseline target)
+  const float fi_shared = static_cast<float>(q0 - i_shift);
+  const auto cellOf = [&](const CellRun& run, int u, int& i0, float& fi) {
+    if (f.scale == 1) {
+      i0 = u + i_shift, fi = fi_shared;
+      if (i0 < run.begin) i0 = run.begin, fi = 0.f;
+      if (i0 > run.end - 1) i0 = run.end - 1, fi = 1.f;
+    } else {
+      const double qi = (u * inv_scale + base_i) - oi;
+      i0 = std::clamp(static_cast<int>(qi), run.begin, run.end - 1);
+      // Clamped by max and min, without branches (std::clamp's value for any finite qi).
+      fi = std::min(std::max(static_cast<float>(qi - i0), 0.f), 1.f);
+    }
+  };
   SampleBatch batch;
   const auto flush = [&] {
     composite(batch);
@@ -217,12 +237,8 @@ SVR_SHEARWARP_INLINE void forEachSample(const CompositeJob& job, int v, int slic
     // The count in a register (flush, out of line, sees it only when called).
     int n = batch.count;
     for (int u = nextLive(links, u_begin); u < u_end; u = nextLive(links, u + 1)) {
-      const double qi = (u * inv_scale + base_i) - oi;
-      const int i0 = std::clamp(static_cast<int>(qi), run.begin, run.end - 1);
       batch.u[n] = u;
-      batch.i0[n] = i0;
-      // Clamped by max and min, without branches (std::clamp's value for any finite qi).
-      batch.fi[n] = std::min(std::max(static_cast<float>(qi - i0), 0.f), 1.f);
+      cellOf(run, u, batch.i0[n], batch.fi[n]);
       if (++n == SampleBatch::kMax) {
         batch.count = n;
         flush();
