@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "renderers/core/channel_widths.h"
 #include "renderers/core/float4.h"
 
 namespace svr::shearwarp {
@@ -52,11 +53,13 @@ void interiorRange(const ShearWarpFactorization& f, const IntermediateImage& im,
   if (x1 < x0) x1 = x0 = 0;
 }
 
-}  // namespace
-
-void warpToFinal(const IntermediateImage& im, const ShearWarpFactorization& f,
-                 LightIndependentImage& out) {
-  const int channels = im.channels();
+// warpToFinal for an image of N channels (S and T), fixed at compile time for the channel
+// counts the kernels are compiled for (channel_widths.h), so that the per-pixel loop over
+// channels and planes unrolls; N = 0: any count. The same arithmetic either way.
+template <int N>
+void warpTiles(const IntermediateImage& im, const ShearWarpFactorization& f,
+               LightIndependentImage& out) {
+  const int channels = N > 0 ? N : im.channels();
   const std::size_t pixels = out.pixels();
   float* planes = out.planeFloat(0).data();
   const int width = out.width(), height = out.height();
@@ -140,6 +143,17 @@ void warpToFinal(const IntermediateImage& im, const ShearWarpFactorization& f,
       for (int x = std::max(inner1[r], inner0[r]); x < width; ++x) border(x);
     }
   }
+}
+
+}  // namespace
+
+void warpToFinal(const IntermediateImage& im, const ShearWarpFactorization& f,
+                 LightIndependentImage& out) {
+  const bool spectral_t = im.t_channels > 1;
+  pickWidth(im.s_channels, false, [&]<int K>() {
+    constexpr int kScalar = K > 0 ? K + 1 : 0, kSpectral = 2 * K;
+    spectral_t ? warpTiles<kSpectral>(im, f, out) : warpTiles<kScalar>(im, f, out);
+  });
 }
 
 }  // namespace svr::shearwarp
