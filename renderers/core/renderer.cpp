@@ -69,19 +69,24 @@ LightIndependentImage Renderer::render(const RenderRequest& request,
   ProgressCounter counter(progress);
   LightIndependentImage image = renderImpl(request, options, counter);
   counter.set(1.0);
-  // Numeric failure is reported, never written out. The planes are one array.
-  if (allFinite({image.planeFloat(0).data(), image.pixels() * image.planes()})) return image;
+  requireFinite(image, request);  // numeric failure is reported, never written out
+  return image;
+}
+
+void Renderer::requireFinite(const LightIndependentImage& image,
+                             const RenderRequest& request) const {
+  // The planes are one array.
+  if (allFinite({image.planeFloat(0).data(), image.pixels() * image.planes()})) return;
   for (int p = 0; p < image.planes(); ++p) {
     const auto plane = image.planeFloat(p);
     if (allFinite(plane)) continue;
     for (std::size_t i = 0; i < plane.size(); ++i)
       if (!std::isfinite(plane[i]))
         throw Error(fmt::format("{}: non-finite value {} in {} channel {} at pixel ({}, {})",
-                                backend.name, plane[i], p < request.volume.k ? "S" : "T",
+                                name(), plane[i], p < request.volume.k ? "S" : "T",
                                 p < request.volume.k ? p : p - request.volume.k,
                                 i % image.width(), i / image.width()));
   }
-  return image;
 }
 
 }  // namespace svr

@@ -57,7 +57,7 @@ void interiorRange(const ShearWarpFactorization& f, const IntermediateImage& im,
 // counts the kernels are compiled for (channel_widths.h), so that the per-pixel loop over
 // channels and planes unrolls; N = 0: any count. The same arithmetic either way.
 template <int N>
-void warpTiles(const IntermediateImage& im, const ShearWarpFactorization& f,
+bool warpTiles(const IntermediateImage& im, const ShearWarpFactorization& f,
                LightIndependentImage& out) {
   const int channels = N > 0 ? N : im.channels();
   const std::size_t pixels = out.pixels();
@@ -69,9 +69,10 @@ void warpTiles(const IntermediateImage& im, const ShearWarpFactorization& f,
   std::fill(empty.begin() + im.s_channels, empty.begin() + channels, 1.f);
   const std::size_t row_stride = static_cast<std::size_t>(im.width) * im.stride;
   // Output pixel `at` from four taps: their channels blended four at a time; the lanes past
-  // the last channel read the pixel's padding and are not stored.
+  // the last channel read the pixel's padding and are not stored. Lanes whose exponent bits
+  // are all set (NaN, ±Inf) are marked in `bad`.
   const auto blend = [&](std::size_t at, const float* p00, const float* p10, const float* p01,
-                         const float* p11, float fu, float fv) {
+                         const float* p11, float fu, float fv, Int4& bad) {
     const Float4 fu4 = splat4(fu), fv4 = splat4(fv);
     for (int c = 0; c < channels; c += 4) {
       // Bilinear as three lerps: along u in both rows, then along v.
@@ -79,6 +80,7 @@ void warpTiles(const IntermediateImage& im, const ShearWarpFactorization& f,
       const Float4 b0 = load4(p01 + c), b1 = load4(p11 + c);
       const Float4 top = a0 + fu4 * (a1 - a0), bottom = b0 + fu4 * (b1 - b0);
       const Float4 sum = top + fv4 * (bottom - top);
+      bad |= (reinterpret_cast<Int4>(sum) & 0x7f800000) == 0x7f800000;
       for (int lane = 0; lane < std::min(4, channels - c); ++lane)
         planes[(c + lane) * pixels + at] = sum[lane];
     }
@@ -90,9 +92,11 @@ void warpTiles(const IntermediateImage& im, const ShearWarpFactorization& f,
   // reused while they are still in the first-level cache.
   constexpr int kTileRows = 8, kTileColumns = 32;
   const int row_blocks = (height + kTileRows - 1) / kTileRows;
-#pragma omp parallel for schedule(static)
+  unsigned any_bad = 0;
+#pragma omp parallel for schedule(static) reduction(| : any_bad)
   for (int block = 0; block < row_blocks; ++block) {
     const int y0 = block * kTileRows, y1 = std::min(y0 + kTileRows, height);
+    Int4 bad{0, 0, 0, 0};
     int inner0[kTileRows], inner1[kTileRows];
     double u_row[kTileRows], v_row[kTileRows];
     for (int y = y0; y < y1; ++y) {
@@ -116,7 +120,7 @@ void warpTiles(const IntermediateImage& im, const ShearWarpFactorization& f,
           const float* p00 = im.pixel(iu, iv);
           const float* p01 = p00 + row_stride;
           blend(row_index + x, p00, p00 + im.stride, p01, p01 + im.stride,
-                static_cast<float>(u - iu), static_cast<float>(v - iv));
+                static_cast<float>(u - iu), static_cast<float>(v - iv), bad);
         }
       }
     // The border pixels, with every tap checked.
@@ -137,22 +141,25 @@ void warpTiles(const IntermediateImage& im, const ShearWarpFactorization& f,
                                                                         : empty.data();
         };
         blend(row_index + x, tap(u0, v0), tap(u0 + 1, v0), tap(u0, v0 + 1),
-              tap(u0 + 1, v0 + 1), static_cast<float>(u - uf), static_cast<float>(v - vf));
+              tap(u0 + 1, v0 + 1), static_cast<float>(u - uf), static_cast<float>(v - vf),
+              bad);
       };
       for (int x = 0; x < inner0[r]; ++x) border(x);
       for (int x = std::max(inner1[r], inner0[r]); x < width; ++x) border(x);
     }
+    any_bad |= laneMask(bad);
   }
+  return any_bad == 0;
 }
 
 }  // namespace
 
-void warpToFinal(const IntermediateImage& im, const ShearWarpFactorization& f,
+bool warpToFinal(const IntermediateImage& im, const ShearWarpFactorization& f,
                  LightIndependentImage& out) {
   const bool spectral_t = im.t_channels > 1;
-  pickWidth(im.s_channels, false, [&]<int K>() {
+  return pickWidth(im.s_channels, false, [&]<int K>() {
     constexpr int kScalar = K > 0 ? K + 1 : 0, kSpectral = 2 * K;
-    spectral_t ? warpTiles<kSpectral>(im, f, out) : warpTiles<kScalar>(im, f, out);
+    return spectral_t ? warpTiles<kSpectral>(im, f, out) : warpTiles<kScalar>(im, f, out);
   });
 }
 

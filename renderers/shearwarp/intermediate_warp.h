@@ -44,8 +44,9 @@ struct IntermediateImage {
 
 // Every final pixel takes the bilinear interpolation of the intermediate pixels around its
 // warped centre; pixels outside the intermediate image are empty space (S = 0, T = 1), as the
-// raycaster leaves rays that miss the volume.
-void warpToFinal(const IntermediateImage& intermediate, const ShearWarpFactorization& f,
+// raycaster leaves rays that miss the volume. Writes every sample of `out`; returns whether
+// all of them are finite (checked as they are written, while in registers).
+bool warpToFinal(const IntermediateImage& intermediate, const ShearWarpFactorization& f,
                  LightIndependentImage& out);
 
 }  // namespace svr::shearwarp

@@ -107,7 +107,8 @@ LightIndependentImage ShearWarpRenderer::finishBricks(LightIndependentImage comp
   }
   LightIndependentImage image =
       LightIndependentImage::unset(req.width, req.height, cv.k, cv.t_channels);
-  shearwarp::warpToFinal(intermediate, view, image);  // writes every sample
+  // Writes every sample, and checks each as it does.
+  if (!shearwarp::warpToFinal(intermediate, view, image)) Renderer::requireFinite(image, req);
   return image;
 }
 
@@ -199,9 +200,17 @@ LightIndependentImage ShearWarpRenderer::renderImpl(const RenderRequest& req,
     image = planarOf(intermediate);  // composited with the other bricks, then finishBricks
   } else {
     image = LightIndependentImage::unset(req.width, req.height, cv.k, cv.t_channels);
-    shearwarp::warpToFinal(intermediate, view, image);  // writes every sample
+    // Writes every sample, and checks each as it does (requireFinite, below, need not).
+    if (!shearwarp::warpToFinal(intermediate, view, image)) Renderer::requireFinite(image, req);
   }
   return image;
+}
+
+void ShearWarpRenderer::requireFinite(const LightIndependentImage& image,
+                                      const RenderRequest& req) const {
+  // A whole volume's image was checked by the warp that wrote it; a brick's (the intermediate
+  // image, planar) is checked here.
+  if (req.volume.brick) Renderer::requireFinite(image, req);
 }
 
 ShearWarpRenderer::ShearWarpRenderer(KernelForce force) : force_(force) {}

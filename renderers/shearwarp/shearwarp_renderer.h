@@ -39,6 +39,8 @@ class ShearWarpRenderer final : public Renderer {
                              const BackendOptions& options) const override;
   LightIndependentImage renderImpl(const RenderRequest& request, const BackendOptions& options,
                                    ProgressCounter& progress) const override;
+  void requireFinite(const LightIndependentImage& image,
+                     const RenderRequest& request) const override;
 
  public:
   // force: the kernel's instruction set and dynamic-k path (tests compare them).

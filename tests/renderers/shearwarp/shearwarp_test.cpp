@@ -4,6 +4,8 @@
 
 #include <cmath>
 #include <cstdio>
+#include <limits>
+#include <utility>
 #include <vector>
 
 #include "renderers/core/classification.h"
@@ -11,6 +13,7 @@
 #include "renderers/core/procedural_volume.h"
 #include "renderers/scene_model.h"
 #include "renderers/raycast/raycast_renderer.h"
+#include "renderers/shearwarp/intermediate_warp.h"
 #include "renderers/shearwarp/preclassified_axis.h"
 #include "renderers/shearwarp/rle_volume.h"
 #include "renderers/shearwarp/shear_warp_factorization.h"
@@ -382,6 +385,33 @@ TEST(ShearWarp, AxisAndDiagonalCamerasRenderWithoutGaps) {
         }
       EXPECT_GT(covered, 100) << azimuth << " " << elevation;
     }
+}
+
+// The warp writes every sample and checks each as it writes it (the renderer then skips
+// Renderer's scan): an empty intermediate image warps to S = 0, T = 1 everywhere and passes; a
+// NaN or an infinity in any channel of one intermediate pixel is caught, rgb, factor:6 and
+// spectral T alike (a channel past the fourth takes the pixel's second vector).
+TEST(ShearWarp, WarpChecksEverySampleItWrites) {
+  const Dims dims{20, 16, 12};
+  const shearwarp::ShearWarpFactorization view = shearwarp::factorizeView(
+      Camera::orbit(30.0, 20.0, 100.0, 0.0, 40.0), 24, 24, dims, glm::dvec3(1.0), 1);
+  const float bad[] = {std::numeric_limits<float>::quiet_NaN(),
+                       std::numeric_limits<float>::infinity(),
+                       -std::numeric_limits<float>::infinity()};
+  for (const auto [k, t] : {std::pair{3, 1}, std::pair{6, 1}, std::pair{6, 6}}) {
+    shearwarp::IntermediateImage im(view.width, view.height, k, t);
+    LightIndependentImage out = LightIndependentImage::unset(24, 24, k, t);
+    ASSERT_TRUE(shearwarp::warpToFinal(im, view, out)) << k << " " << t;
+    for (int p = 0; p < out.planes(); ++p)
+      for (float v : out.planeFloat(p)) ASSERT_EQ(v, p < k ? 0.f : 1.f) << k << " " << p;
+    for (int channel : {0, k - 1, k + t - 1})
+      for (float value : bad) {
+        shearwarp::IntermediateImage broken(view.width, view.height, k, t);
+        broken.pixel(view.width / 2, view.height / 2)[channel] = value;
+        EXPECT_FALSE(shearwarp::warpToFinal(broken, view, out))
+            << k << " " << t << " channel " << channel << " " << value;
+      }
+  }
 }
 
 TEST(ShearWarp, RefusesPerspectiveCamerasAndUnknownOptions) {
