@@ -112,10 +112,14 @@ bool warpTiles(const IntermediateImage& im, const ShearWarpFactorization& f,
       for (int y = y0; y < y1; ++y) {
         const int r = y - y0;
         const std::size_t row_index = static_cast<std::size_t>(y) * width;
+        const int begin = std::max(x0, inner0[r]);
         const int end = std::min(x0 + kTileColumns, inner1[r]);
-        for (int x = std::max(x0, inner0[r]); x < end; ++x) {
-          const double px = x + 0.5;
-          const double u = u_row[r] + f.warp_u[1] * px, v = v_row[r] + f.warp_v[1] * px;
+        // Stepped along the segment from its first pixel (two additions a pixel instead of a
+        // conversion, two multiplications and two additions; over at most kTileColumns steps
+        // the sums stay within 1e-13 voxel of the products).
+        double u = u_row[r] + f.warp_u[1] * (begin + 0.5);
+        double v = v_row[r] + f.warp_v[1] * (begin + 0.5);
+        for (int x = begin; x < end; ++x, u += f.warp_u[1], v += f.warp_v[1]) {
           const int iu = static_cast<int>(u), iv = static_cast<int>(v);
           const float* p00 = im.pixel(iu, iv);
           const float* p01 = p00 + row_stride;

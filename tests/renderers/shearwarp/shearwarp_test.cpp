@@ -398,7 +398,7 @@ TEST(ShearWarp, WarpChecksEverySampleItWrites) {
   const float bad[] = {std::numeric_limits<float>::quiet_NaN(),
                        std::numeric_limits<float>::infinity(),
                        -std::numeric_limits<float>::infinity()};
-  for (const auto [k, t] : {std::pair{3, 1}, std::pair{6, 1}, std::pair{6, 6}}) {
+  for (const auto& [k, t] : {std::pair{3, 1}, std::pair{6, 1}, std::pair{6, 6}}) {
     shearwarp::IntermediateImage im(view.width, view.height, k, t);
     LightIndependentImage out = LightIndependentImage::unset(24, 24, k, t);
     ASSERT_TRUE(shearwarp::warpToFinal(im, view, out)) << k << " " << t;
