@@ -69,15 +69,6 @@ SVR_SHEARWARP_INLINE int firstPixel(double target, double base, double inv_scale
   return u;
 }
 
-// acc = r0 + frac (r1 − r0) over a table row (width: a multiple of 4, SliceTable's stride).
-SVR_SHEARWARP_INLINE void lerpRows(const float* r0, const float* r1, float frac,
-                                   int width, float* acc) {
-  for (int j = 0; j < width; j += 4) {
-    const Float4 a = load4(r0 + j);
-    store4(acc + j, a + frac * (load4(r1 + j) - a));
-  }
-}
-
 // A label map's sample: the four corners' table rows (one per label) weighted bilinearly.
 SVR_SHEARWARP_INLINE void blendLabels(const SliceTable& table,
                                       const VoxelRecord* const c[4], const float w[4],

@@ -105,9 +105,15 @@ LightIndependentImage ShearWarpRenderer::finishBricks(LightIndependentImage comp
     const float* plane = composited.planeFloat(p).data();
     for (std::size_t i = 0; i < n; ++i) intermediate.data[i * intermediate.stride + p] = plane[i];
   }
-  LightIndependentImage image =
-      LightIndependentImage::unset(req.width, req.height, cv.k, cv.t_channels);
-  // Writes every sample, and checks each as it does.
+  return warped(intermediate, view, req);
+}
+
+LightIndependentImage ShearWarpRenderer::warped(const shearwarp::IntermediateImage& intermediate,
+                                                const shearwarp::ShearWarpFactorization& view,
+                                                const RenderRequest& req) const {
+  LightIndependentImage image = LightIndependentImage::unset(
+      req.width, req.height, req.volume.k, req.volume.t_channels);
+  // Writes every sample, and checks each as it does (requireFinite, below, need not).
   if (!shearwarp::warpToFinal(intermediate, view, image)) Renderer::requireFinite(image, req);
   return image;
 }
@@ -199,9 +205,7 @@ LightIndependentImage ShearWarpRenderer::renderImpl(const RenderRequest& req,
   if (cv.brick) {
     image = planarOf(intermediate);  // composited with the other bricks, then finishBricks
   } else {
-    image = LightIndependentImage::unset(req.width, req.height, cv.k, cv.t_channels);
-    // Writes every sample, and checks each as it does (requireFinite, below, need not).
-    if (!shearwarp::warpToFinal(intermediate, view, image)) Renderer::requireFinite(image, req);
+    image = warped(intermediate, view, req);
   }
   return image;
 }

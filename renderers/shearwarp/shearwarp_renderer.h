@@ -23,6 +23,7 @@
 namespace svr {
 namespace shearwarp {
 struct IntermediateImage;
+struct ShearWarpFactorization;
 }
 
 class ShearWarpRenderer final : public Renderer {
@@ -48,6 +49,10 @@ class ShearWarpRenderer final : public Renderer {
   ~ShearWarpRenderer() override;
 
  private:
+  // The final image warped from the intermediate one (every sample written and checked).
+  LightIndependentImage warped(const shearwarp::IntermediateImage& intermediate,
+                               const shearwarp::ShearWarpFactorization& view,
+                               const RenderRequest& req) const;
   KernelForce force_;
   // Intermediate images of finished frames, reused by the next ones (allocating and zeroing a
   // fresh one cost about 16 ns per output pixel, some 10 of 37 ms at 800²).
