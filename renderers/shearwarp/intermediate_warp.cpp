@@ -16,6 +16,21 @@ IntermediateImage::IntermediateImage(int w, int h, int s, int t) {
 void IntermediateImage::resize(int w, int h, int s, int t) {
   width = w, height = h, s_channels = s, t_channels = t, stride = strideFor(s, t);
   data.resize(static_cast<std::size_t>(w) * h * stride + kSlack);
+  touched_begin.assign(h, w);
+  touched_end.assign(h, 0);
+}
+
+void IntermediateImage::touchAll() {
+  std::fill(touched_begin.begin(), touched_begin.end(), 0);
+  std::fill(touched_end.begin(), touched_end.end(), width);
+}
+
+bool IntermediateImage::touchedWithin(int u0, int u1, int v0, int v1) const {
+  u0 = std::max(u0, 0), v0 = std::max(v0, 0);
+  u1 = std::min(u1, width - 1), v1 = std::min(v1, height - 1);
+  for (int v = v0; v <= v1; ++v)
+    if (touched_begin[v] <= u1 && touched_end[v] > u0) return true;
+  return false;
 }
 
 void IntermediateImage::clearRows(int v0, int v1) {
@@ -23,6 +38,8 @@ void IntermediateImage::clearRows(int v0, int v1) {
   // pixel's channels in turn took a memset call for every three floats.
   std::vector<float> empty(stride, 0.f);
   std::fill_n(empty.begin() + s_channels, t_channels, 1.f);
+  std::fill(touched_begin.begin() + v0, touched_begin.begin() + v1, width);
+  std::fill(touched_end.begin() + v0, touched_end.begin() + v1, 0);
   float* d = pixel(0, v0);
   for (std::size_t p = 0; p < static_cast<std::size_t>(v1 - v0) * width; ++p, d += stride)
     for (int c = 0; c < stride; c += 4) store4(d + c, load4(empty.data() + c));
@@ -51,6 +68,28 @@ void interiorRange(const ShearWarpFactorization& f, const IntermediateImage& im,
   clip(f.warp_u, im.width);
   clip(f.warp_v, im.height);
   if (x1 < x0) x1 = x0 = 0;
+}
+
+// Whether any tap of the output pixels [x0, x1) of the rows whose warped coordinates start at
+// (u_first, v_first) and (u_last, v_last) (a tile's first and last rows) lies in a pixel that
+// compositing touched. The taps of a pixel at (u, v) are floor(u) and floor(u) + 1 along u
+// (and so along v), and the coordinates are affine in x and y, so the tile's four corners
+// bound them.
+bool tileTouched(const IntermediateImage& im, const ShearWarpFactorization& f, double u_first,
+                 double v_first, double u_last, double v_last, int x0, int x1) {
+  const double a = f.warp_u[1] * (x0 + 0.5), b = f.warp_u[1] * (x1 - 0.5);
+  const double c = f.warp_v[1] * (x0 + 0.5), d = f.warp_v[1] * (x1 - 0.5);
+  const double u_lo = std::min({u_first + a, u_first + b, u_last + a, u_last + b});
+  const double u_hi = std::max({u_first + a, u_first + b, u_last + a, u_last + b});
+  const double v_lo = std::min({v_first + c, v_first + d, v_last + c, v_last + d});
+  const double v_hi = std::max({v_first + c, v_first + d, v_last + c, v_last + d});
+  // One pixel of margin on each side absorbs rounding in the stepped coordinates.
+  const auto lo = [](double q) { return static_cast<int>(std::floor(q)) - 1; };
+  const auto hi = [](double q) { return static_cast<int>(std::floor(q)) + 2; };
+  if (!(u_hi >= -2.0 && v_hi >= -2.0 && u_lo < im.width + 1 && v_lo < im.height + 1))
+    return false;  // wholly outside: every tap is empty space
+  return im.touchedWithin(lo(std::max(u_lo, -2.0)), hi(std::min(u_hi, im.width + 1.0)),
+                          lo(std::max(v_lo, -2.0)), hi(std::min(v_hi, im.height + 1.0)));
 }
 
 // warpToFinal for an image of N channels (S and T), fixed at compile time for the channel
@@ -106,17 +145,47 @@ bool warpTiles(const IntermediateImage& im, const ShearWarpFactorization& f,
       u_row[y - y0] = f.warp_u[0] + f.warp_u[2] * py;
       v_row[y - y0] = f.warp_v[0] + f.warp_v[2] * py;
     }
-    // Inside: all four taps in the image and both coordinates ≥ 0, so truncation is the floor
-    // (std::floor is a libm call on the baseline x86-64 target).
-    for (int x0 = 0; x0 < width; x0 += kTileColumns)
+    for (int x0 = 0; x0 < width; x0 += kTileColumns) {
+      const int x1 = std::min(x0 + kTileColumns, width);
+      if (!tileTouched(im, f, u_row[0], v_row[0], u_row[y1 - 1 - y0], v_row[y1 - 1 - y0], x0,
+                       x1)) {
+        // Every tap is empty space, and so is every pixel the tile would blend from them.
+        for (int c = 0; c < channels; ++c)
+          for (int y = y0; y < y1; ++y)
+            std::fill(planes + c * pixels + static_cast<std::size_t>(y) * width + x0,
+                      planes + c * pixels + static_cast<std::size_t>(y) * width + x1, empty[c]);
+        continue;
+      }
       for (int y = y0; y < y1; ++y) {
         const int r = y - y0;
         const std::size_t row_index = static_cast<std::size_t>(y) * width;
-        const int begin = std::max(x0, inner0[r]);
-        const int end = std::min(x0 + kTileColumns, inner1[r]);
-        // Stepped along the segment from its first pixel (two additions a pixel instead of a
-        // conversion, two multiplications and two additions; over at most kTileColumns steps
-        // the sums stay within 1e-13 voxel of the products).
+        const int begin = std::clamp(inner0[r], x0, x1);
+        const int end = std::clamp(inner1[r], begin, x1);
+        // The border pixels, with every tap checked.
+        const auto border = [&](int x) {
+          const double px = x + 0.5;
+          const double u = u_row[r] + f.warp_u[1] * px, v = v_row[r] + f.warp_v[1] * px;
+          if (!(u >= -1.0 && v >= -1.0 && u < im.width && v < im.height)) {  // no tap inside
+            for (int c = 0; c < channels; ++c) planes[c * pixels + row_index + x] = empty[c];
+            return;
+          }
+          const double uf = std::floor(u), vf = std::floor(v);
+          const int u0 = static_cast<int>(uf), v0 = static_cast<int>(vf);
+          const auto tap = [&](int uu, int vv) {
+            return uu >= 0 && vv >= 0 && uu < im.width && vv < im.height ? im.pixel(uu, vv)
+                                                                          : empty.data();
+          };
+          blend(row_index + x, tap(u0, v0), tap(u0 + 1, v0), tap(u0, v0 + 1),
+                tap(u0 + 1, v0 + 1), static_cast<float>(u - uf), static_cast<float>(v - vf),
+                bad);
+        };
+        for (int x = x0; x < begin; ++x) border(x);
+        for (int x = end; x < x1; ++x) border(x);
+        // Inside: all four taps in the image and both coordinates ≥ 0, so truncation is the
+        // floor (std::floor is a libm call on the baseline x86-64 target). Stepped along the
+        // segment from its first pixel (two additions a pixel instead of a conversion, two
+        // multiplications and two additions; over at most kTileColumns steps the sums stay
+        // within 1e-13 voxel of the products).
         double u = u_row[r] + f.warp_u[1] * (begin + 0.5);
         double v = v_row[r] + f.warp_v[1] * (begin + 0.5);
         for (int x = begin; x < end; ++x, u += f.warp_u[1], v += f.warp_v[1]) {
@@ -127,29 +196,6 @@ bool warpTiles(const IntermediateImage& im, const ShearWarpFactorization& f,
                 static_cast<float>(u - iu), static_cast<float>(v - iv), bad);
         }
       }
-    // The border pixels, with every tap checked.
-    for (int y = y0; y < y1; ++y) {
-      const int r = y - y0;
-      const std::size_t row_index = static_cast<std::size_t>(y) * width;
-      const auto border = [&](int x) {
-        const double px = x + 0.5;
-        const double u = u_row[r] + f.warp_u[1] * px, v = v_row[r] + f.warp_v[1] * px;
-        if (!(u >= -1.0 && v >= -1.0 && u < im.width && v < im.height)) {  // no tap inside
-          for (int c = 0; c < channels; ++c) planes[c * pixels + row_index + x] = empty[c];
-          return;
-        }
-        const double uf = std::floor(u), vf = std::floor(v);
-        const int u0 = static_cast<int>(uf), v0 = static_cast<int>(vf);
-        const auto tap = [&](int uu, int vv) {
-          return uu >= 0 && vv >= 0 && uu < im.width && vv < im.height ? im.pixel(uu, vv)
-                                                                        : empty.data();
-        };
-        blend(row_index + x, tap(u0, v0), tap(u0 + 1, v0), tap(u0, v0 + 1),
-              tap(u0 + 1, v0 + 1), static_cast<float>(u - uf), static_cast<float>(v - vf),
-              bad);
-      };
-      for (int x = 0; x < inner0[r]; ++x) border(x);
-      for (int x = std::max(inner1[r], inner0[r]); x < width; ++x) border(x);
     }
     any_bad |= laneMask(bad);
   }

@@ -5,6 +5,7 @@
 // channel) and the 2D affine warp that resamples it, bilinearly, into the final
 // light-independent image.
 
+#include <algorithm>
 #include <vector>
 
 #include "renderers/core/huge_pages.h"
@@ -23,6 +24,18 @@ struct IntermediateImage {
   void resize(int width, int height, int s_channels, int t_channels);
   // Rows [v0, v1) empty again.
   void clearRows(int v0, int v1);
+  // Compositing wrote to pixels [u0, u1) of row v (or left them as they were): outside each
+  // row's touched columns the row is still empty, and the warp fills what it reads only from
+  // there without reading it.
+  void touch(int v, int u0, int u1) {
+    touched_begin[v] = std::min(touched_begin[v], u0);
+    touched_end[v] = std::max(touched_end[v], u1);
+  }
+  // Every pixel possibly non-empty (pixels written other than by compositing).
+  void touchAll();
+  // Whether any pixel in columns [u0, u1] of rows [v0, v1] was touched (bounds inclusive,
+  // clipped to the image).
+  bool touchedWithin(int u0, int u1, int v0, int v1) const;
   int width = 0, height = 0, s_channels = 0, t_channels = 0;
   int stride = 0;  // floats a pixel: its channels and zeros up to a multiple of four
   int channels() const { return s_channels + t_channels; }
@@ -40,6 +53,7 @@ struct IntermediateImage {
   // Starts empty: S = 0, T = 1, padding 0 (then kSlack floats of slack). On huge pages: the
   // warp crosses its rows at most steps under rotation.
   std::vector<float, HugePageAllocator<float>> data;
+  std::vector<int> touched_begin, touched_end;  // per row; begin ≥ end: untouched
 };
 
 // Every final pixel takes the bilinear interpolation of the intermediate pixels around its

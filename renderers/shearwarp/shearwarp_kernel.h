@@ -213,6 +213,7 @@ SVR_SHEARWARP_INLINE void forEachSample(const CompositeJob& job, int v, int slic
   };
   SampleBatch batch;
   const auto flush = [&] {
+    job.image->touch(v, batch.u[0], batch.u[batch.count - 1] + 1);  // u rises along a scanline
     composite(batch);
     for (int p = 0; p < batch.count; ++p)
       if (batch.opaque[p]) links[batch.u[p]] = batch.u[p] + 1;

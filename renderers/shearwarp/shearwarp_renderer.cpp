@@ -105,6 +105,7 @@ LightIndependentImage ShearWarpRenderer::finishBricks(LightIndependentImage comp
     const float* plane = composited.planeFloat(p).data();
     for (std::size_t i = 0; i < n; ++i) intermediate.data[i * intermediate.stride + p] = plane[i];
   }
+  intermediate.touchAll();
   return warped(intermediate, view, req);
 }
 

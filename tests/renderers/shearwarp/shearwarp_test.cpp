@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdio>
 #include <limits>
+#include <tuple>
 #include <utility>
 #include <vector>
 
@@ -408,9 +409,51 @@ TEST(ShearWarp, WarpChecksEverySampleItWrites) {
       for (float value : bad) {
         shearwarp::IntermediateImage broken(view.width, view.height, k, t);
         broken.pixel(view.width / 2, view.height / 2)[channel] = value;
+        broken.touch(view.height / 2, view.width / 2, view.width / 2 + 1);
         EXPECT_FALSE(shearwarp::warpToFinal(broken, view, out))
             << k << " " << t << " channel " << channel << " " << value;
       }
+  }
+}
+
+// The warp fills tiles whose taps all lie outside the touched columns without reading them:
+// an image whose pixels outside a few touched spans are empty warps to the same bytes as when
+// every row is marked touched, at rotations and zooms that put a span's edge anywhere in a
+// tile (and a span of one pixel, whose taps only a few output pixels reach).
+TEST(ShearWarp, UntouchedTilesWarpAsTheirPixelsWould) {
+  const Dims dims{40, 32, 24};
+  for (const auto& [azimuth, elevation, zoom] :
+       {std::tuple{30.0, 20.0, 1.0}, std::tuple{-70.0, 35.0, 2.5}, std::tuple{5.0, -80.0, 0.7},
+        std::tuple{135.0, 10.0, 4.0}}) {
+    const Camera camera = Camera::orbit(azimuth, elevation, 100.0, 0.0, 40.0 / zoom);
+    const shearwarp::ShearWarpFactorization view =
+        shearwarp::factorizeView(camera, 96, 80, dims, glm::dvec3(1.0), 1);
+    for (const auto& [k, t] : {std::pair{3, 1}, std::pair{6, 6}}) {
+      shearwarp::IntermediateImage im(view.width, view.height, k, t);
+      const int w = view.width, h = view.height;
+      const auto paint = [&](int v, int u0, int u1) {
+        for (int u = u0; u < u1; ++u)
+          for (int c = 0; c < k + t; ++c) im.pixel(u, v)[c] = 0.25f + 0.01f * (u + v + c);
+        im.touch(v, u0, u1);
+      };
+      for (int v = h / 4; v < h / 2; ++v) paint(v, w / 3, w / 3 + 1 + v % 7);
+      paint(h - 1, w - 1, w);  // one pixel in a corner
+      paint(3 * h / 4, w / 2, w / 2 + 1);
+      LightIndependentImage spans = LightIndependentImage::unset(96, 80, k, t);
+      LightIndependentImage whole = LightIndependentImage::unset(96, 80, k, t);
+      ASSERT_TRUE(shearwarp::warpToFinal(im, view, spans));
+      im.touchAll();
+      ASSERT_TRUE(shearwarp::warpToFinal(im, view, whole));
+      int painted = 0;
+      for (int p = 0; p < spans.planes(); ++p) {
+        const auto a = spans.planeFloat(p), b = whole.planeFloat(p);
+        for (std::size_t i = 0; i < a.size(); ++i) {
+          ASSERT_EQ(a[i], b[i]) << azimuth << " " << zoom << " k " << k << " plane " << p;
+          painted += p == 0 && a[i] != 0.f;
+        }
+      }
+      EXPECT_GT(painted, 0) << azimuth << " " << zoom;  // the spans are in view
+    }
   }
 }
 
