@@ -14,15 +14,16 @@ IntermediateImage::IntermediateImage(int w, int h, int s, int t) {
 }
 
 void IntermediateImage::resize(int w, int h, int s, int t) {
+  const bool same = w == width && h == height && s == s_channels && t == t_channels;
   width = w, height = h, s_channels = s, t_channels = t, stride = strideFor(s, t);
   data.resize(static_cast<std::size_t>(w) * h * stride + kSlack);
-  touched_begin.assign(h, w);
-  touched_end.assign(h, 0);
+  // Pixels in another layout: every column of every row for clearRows to empty.
+  if (!same) touchAll();
 }
 
 void IntermediateImage::touchAll() {
-  std::fill(touched_begin.begin(), touched_begin.end(), 0);
-  std::fill(touched_end.begin(), touched_end.end(), width);
+  touched_begin.assign(height, 0);
+  touched_end.assign(height, width);
 }
 
 bool IntermediateImage::touchedWithin(int u0, int u1, int v0, int v1) const {
@@ -35,14 +36,16 @@ bool IntermediateImage::touchedWithin(int u0, int u1, int v0, int v1) const {
 
 void IntermediateImage::clearRows(int v0, int v1) {
   // One empty pixel (S = 0, T = 1, padding 0), copied four floats at a time: filling each
-  // pixel's channels in turn took a memset call for every three floats.
+  // pixel's channels in turn took a memset call for every three floats. Only the touched
+  // columns: the rest of each row is empty still.
   std::vector<float> empty(stride, 0.f);
   std::fill_n(empty.begin() + s_channels, t_channels, 1.f);
-  std::fill(touched_begin.begin() + v0, touched_begin.begin() + v1, width);
-  std::fill(touched_end.begin() + v0, touched_end.begin() + v1, 0);
-  float* d = pixel(0, v0);
-  for (std::size_t p = 0; p < static_cast<std::size_t>(v1 - v0) * width; ++p, d += stride)
-    for (int c = 0; c < stride; c += 4) store4(d + c, load4(empty.data() + c));
+  for (int v = v0; v < v1; ++v) {
+    float* d = pixel(touched_begin[v], v);
+    for (int u = touched_begin[v]; u < touched_end[v]; ++u, d += stride)
+      for (int c = 0; c < stride; c += 4) store4(d + c, load4(empty.data() + c));
+    touched_begin[v] = width, touched_end[v] = 0;
+  }
 }
 
 namespace {

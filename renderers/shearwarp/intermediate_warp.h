@@ -22,7 +22,9 @@ struct IntermediateImage {
   // unspecified until clearRows. A render clears each band's rows just before compositing
   // them, on the thread that composites them, instead of the whole image on one thread first.
   void resize(int width, int height, int s_channels, int t_channels);
-  // Rows [v0, v1) empty again.
+  // Rows [v0, v1) empty again, rewriting only their touched columns (every column after a
+  // resize to another layout): an image reused at one size clears only what the last frame
+  // wrote.
   void clearRows(int v0, int v1);
   // Compositing wrote to pixels [u0, u1) of row v (or left them as they were): outside each
   // row's touched columns the row is still empty, and the warp fills what it reads only from
