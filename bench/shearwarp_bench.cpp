@@ -5,7 +5,8 @@
 //   ShearwarpEncode/<volume>/<model>/<axis>  run-length encoding of one principal axis (x, y,
 //                                     z: every view uses one of them; x's rows are strided), of
 //                                     the engine (256×256×128) and of engine256, the engine
-//                                     resampled to 256³ (the size issue 17's bound is set for)
+//                                     resampled to 256³ (the size issue 17's bound is set for),
+//                                     and of the frog (a label map, 500×470×136)
 //   Classify/engine/<model>           classification (shared by both backends)
 // so per-frame time is split from classification and encoding, and the speed ratio is read from
 // one run (python3 bench/ratios.py out.json).
@@ -62,11 +63,17 @@ Scene engine256() {
   return scene;
 }
 
+// The frog (data/scenes/frog.json): a label map of 32 M voxels, the largest default scene.
+Scene frog() {
+  return loadScene(defaultDataDir() + "/scenes/frog.json", engineBenchScene().library);
+}
+
 void encode(benchmark::State& state, const std::string& volume, const std::string& model_name,
             int axis) {
   const SceneModel model = makeSceneModel(model_name, engineBenchScene().scene, engineBenchScene().observer);
-  const ClassifiedVolume cv = volume == "engine" ? classifyEngine(*model.model)
-                                                 : classifyScene(engine256(), *model.model);
+  const ClassifiedVolume cv = volume == "engine"      ? classifyEngine(*model.model)
+                             : volume == "engine256" ? classifyScene(engine256(), *model.model)
+                                                     : classifyScene(frog(), *model.model);
   std::size_t stored = 0, bytes = 0;
   for (auto _ : state) {
     const shearwarp::RleVolume encoded(cv);
@@ -95,7 +102,7 @@ const bool registered = [] {
             ->UseRealTime()
             ->Unit(benchmark::kMillisecond)
             ->MinTime(1.0);
-    for (const char* volume : {"engine", "engine256"})
+    for (const char* volume : {"engine", "engine256", "frog"})
       for (int axis = 0; axis < 3; ++axis)
         benchmark::RegisterBenchmark(
             fmt::format("ShearwarpEncode/{}/{}/{}", volume, model, "xyz"[axis]).c_str(), encode,
