@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstring>
 #include <span>
+#include <type_traits>
 
 #include "renderers/core/classified_sample.h"
 #include "renderers/core/float4.h"
@@ -26,12 +27,13 @@ struct SliceLayout {
   std::size_t stride_i, stride_j, stride_k;
 };
 
-// One slice of a float array of the volume as contiguous rows: row j starts at
-// data + j · row_stride.
+// One slice of an array of the volume (float values or field, or 16-bit labels) as contiguous
+// rows: row j starts at data + j · row_stride.
+template <class T>
 struct SliceRows {
-  const float* data;
+  const T* data;
   std::size_t row_stride;
-  const float* row(int j) const { return data + static_cast<std::size_t>(j) * row_stride; }
+  const T* row(int j) const { return data + static_cast<std::size_t>(j) * row_stride; }
 };
 
 // Slices k0 − 1 .. k1 of an array (clamped to the volume), for the group of slices k0 .. k1 − 1
@@ -42,19 +44,21 @@ struct SliceRows {
 //
 // The gathered planes come from a huge-page arena, taken once per thread and encoding: a
 // 64-slice group of a 256³ volume is 17 MiB, thousands of 4 KiB page faults otherwise.
+template <class T>
 struct GatherBuffer {
   BlockArena arena;
-  float* data = nullptr;
+  T* data = nullptr;
   std::size_t size = 0;
-  float* get(std::size_t n) {
-    if (n > size) data = arena.allocate<float>(n), size = n;
+  T* get(std::size_t n) {
+    if (n > size) data = arena.allocate<T>(n), size = n;
     return data;
   }
 };
 
+template <class T>
 class SliceGroup {
  public:
-  SliceGroup(const SliceLayout& layout, const float* array, int k0, int k1, GatherBuffer& buffer)
+  SliceGroup(const SliceLayout& layout, const T* array, int k0, int k1, GatherBuffer<T>& buffer)
       : layout_(layout), array_(array), first_(std::max(k0 - 1, 0)),
         last_(std::min(k1, layout.n_k - 1)) {
     if (layout.stride_i == 1) return;
@@ -64,14 +68,14 @@ class SliceGroup {
     plane_ = static_cast<std::size_t>(layout.n_i) * layout.n_j + 16;
     // Room for a whole group and both neighbours, which the first group (no slice before it)
     // does not use: the buffer is then sized once, not grown (and faulted in) again by the next.
-    float* const planes = buffer.get((k1 - k0 + 2) * plane_);
+    T* const planes = buffer.get((k1 - k0 + 2) * plane_);
     // A transpose, in tiles of kTile voxels of a row by every slice of the group: each voxel's
     // slices are contiguous in the volume and its row neighbours a volume row apart, so a tile
     // reads kTile short contiguous runs and writes kTile-voxel runs of each slice.
     constexpr int kTile = 8;
     for (int j = 0; j < layout.n_j; ++j) {
-      const float* from = array + j * layout.stride_j + first_ * layout.stride_k;
-      float* to = planes + static_cast<std::size_t>(j) * layout.n_i;
+      const T* from = array + j * layout.stride_j + first_ * layout.stride_k;
+      T* to = planes + static_cast<std::size_t>(j) * layout.n_i;
       for (int i0 = 0; i0 < layout.n_i; i0 += kTile) {
         const int width = std::min(kTile, layout.n_i - i0);
         // The next tile's lines, which the hardware does not see coming.
@@ -85,7 +89,7 @@ class SliceGroup {
     }
     gathered_ = planes;
   }
-  SliceRows slice(int k) const {
+  SliceRows<T> slice(int k) const {
     k = std::clamp(k, 0, layout_.n_k - 1);
     if (!gathered_) return {array_ + k * layout_.stride_k, layout_.stride_j};
     return {gathered_ + (k - first_) * plane_, static_cast<std::size_t>(layout_.n_i)};
@@ -93,9 +97,9 @@ class SliceGroup {
 
  private:
   SliceLayout layout_;
-  const float* array_;
+  const T* array_;
   int first_, last_;
-  const float* gathered_ = nullptr;
+  const T* gathered_ = nullptr;
   std::size_t plane_ = 0;
 };
 
@@ -196,8 +200,10 @@ struct ActiveCells {
 struct EncoderScratch {
   ActiveCells active;
   std::vector<float> keys;          // the slice's keys, row after row
+  std::vector<float> labels;        // label maps: the slice's labels as floats, as keys are
   std::vector<std::uint8_t> occupied;  // one cell row
-  GatherBuffer values, field;          // SliceGroup's gathered slices
+  GatherBuffer<float> values, field;   // SliceGroup's gathered slices
+  GatherBuffer<std::uint16_t> label_planes;
   BlockArena records;                  // the records of the slices this thread encodes
 };
 
@@ -210,10 +216,10 @@ struct SliceSource {
 };
 
 // The voxel records of row j of slice k, voxels lo .. lo + count − 1: the bin coordinate (or
-// label number) and the central differences of the shading field, clamped at the border as the
-// raycaster's, in world units.
-void fillRowRecords(const SliceSource& src, const SliceGroup& values, const SliceGroup& field,
-                    const float* keys, int k, int j, const RowSpan& span, VoxelRecord* out) {
+// label number, from `bins`: the row's keys or label numbers) and the central differences of
+// the shading field, clamped at the border as the raycaster's, in world units.
+void fillRowRecords(const SliceSource& src, const SliceGroup<float>& field, const float* bins,
+                    int k, int j, const RowSpan& span, VoxelRecord* out) {
   const SliceLayout& l = src.layout;
   const double* sp = &src.cv.spacing.x;
   const float h_i = static_cast<float>(0.5 / sp[src.axis_i]);
@@ -225,7 +231,6 @@ void fillRowRecords(const SliceSource& src, const SliceGroup& values, const Slic
   const float* f_jp = here.row(std::min(j + 1, l.n_j - 1));
   const float* f_km = field.slice(k - 1).row(j);
   const float* f_kp = field.slice(k + 1).row(j);
-  const float* bins = src.cv.labels ? values.slice(k).row(j) : keys;
   const auto one = [&](int n) {
     const int i = span.lo + n;
     VoxelRecord& rec = out[n];
@@ -281,8 +286,13 @@ void findActiveCells(const SliceSource& src, int k, ActiveCells& active) {
   }
 }
 
-void encodeSlice(const SliceSource& src, const SliceGroup& values, const SliceGroup& field, int k,
-                 EncoderScratch& scratch, SliceEncoding& s) {
+// Slice k's runs and records. T: what the slices of `values` hold, the float values of a scalar
+// volume or a label map's 16-bit labels (read as such: a quarter of the memory traffic of the
+// labels' float copy that classification keeps for the other backends).
+template <class T>
+void encodeSlice(const SliceSource& src, const SliceGroup<T>& values,
+                 const SliceGroup<float>& field, int k, EncoderScratch& scratch,
+                 SliceEncoding& s) {
   const ClassifiedVolume& cv = src.cv;
   constexpr int B = ClassifiedVolume::kBlock;
   const int n_i = src.layout.n_i, n_j = src.layout.n_j;
@@ -296,7 +306,8 @@ void encodeSlice(const SliceSource& src, const SliceGroup& values, const SliceGr
   // the cell rows either side of the voxel row reach: from the first active cell to the last
   // one's right voxel, so that every record the runs below store has its key.
   scratch.keys.resize(static_cast<std::size_t>(n_i) * n_j);
-  const SliceRows rows = values.slice(k);
+  if (cv.labels) scratch.labels.resize(scratch.keys.size());
+  const SliceRows<T> rows = values.slice(k);
   for (int j = 0; j < n_j; ++j) {
     int lo = n_i, hi = -1;
     for (int cj = std::max(j - 1, 0); cj <= std::min(j, n_j - 2); ++cj) {
@@ -305,10 +316,14 @@ void encodeSlice(const SliceSource& src, const SliceGroup& values, const SliceGr
       lo = std::min(lo, ranges.front().begin);
       hi = std::max(hi, ranges.back().end);  // the last cell's right voxel
     }
-    const float* v = rows.row(j);
+    const T* v = rows.row(j);
     float* key = scratch.keys.data() + static_cast<std::size_t>(j) * n_i;
-    if (cv.labels) {
-      for (int i = lo; i <= hi; ++i) key[i] = cv.alpha[static_cast<int>(v[i])] > 0.f ? 1.f : 0.f;
+    if constexpr (std::is_same_v<T, std::uint16_t>) {
+      float* label = scratch.labels.data() + static_cast<std::size_t>(j) * n_i;
+      for (int i = lo; i <= hi; ++i) {
+        key[i] = cv.alpha[v[i]] > 0.f ? 1.f : 0.f;
+        label[i] = v[i];
+      }
     } else {
       for (int i = lo; i <= hi; ++i) key[i] = binCoordinate(cv, v[i]);
     }
@@ -343,10 +358,11 @@ void encodeSlice(const SliceSource& src, const SliceGroup& values, const SliceGr
   }
   s.records = scratch.records.allocate<VoxelRecord>(stored);
   s.record_count = stored;
+  const float* bins = cv.labels ? scratch.labels.data() : scratch.keys.data();
   for (int j = 0; j < n_j; ++j)
     if (s.rows[j].count > 0)
-      fillRowRecords(src, values, field, scratch.keys.data() + static_cast<std::size_t>(j) * n_i,
-                     k, j, s.rows[j], s.records + s.rows[j].offset);
+      fillRowRecords(src, field, bins + static_cast<std::size_t>(j) * n_i, k, j, s.rows[j],
+                     s.records + s.rows[j].offset);
 }
 
 }  // namespace
@@ -401,11 +417,15 @@ AxisEncoding::AxisEncoding(const ClassifiedVolume& cv, int axis)
 #pragma omp for schedule(dynamic)
     for (int g = 0; g < groups; ++g) {
       const int k0 = g * group, k1 = std::min(k0 + group, n_k_);
-      const SliceGroup values(layout, cv.values.data(), k0, k1, scratch.values);
-      const SliceGroup field = cv.labels
-          ? SliceGroup(layout, cv.shading_field.data(), k0, k1, scratch.field)
-          : values;
-      for (int k = k0; k < k1; ++k) encodeSlice(source, values, field, k, scratch, slices_[k]);
+      if (cv.labels) {
+        const SliceGroup<std::uint16_t> labels(layout, cv.label.data(), k0, k1,
+                                               scratch.label_planes);
+        const SliceGroup<float> field(layout, cv.shading_field.data(), k0, k1, scratch.field);
+        for (int k = k0; k < k1; ++k) encodeSlice(source, labels, field, k, scratch, slices_[k]);
+      } else {
+        const SliceGroup<float> values(layout, cv.values.data(), k0, k1, scratch.values);
+        for (int k = k0; k < k1; ++k) encodeSlice(source, values, values, k, scratch, slices_[k]);
+      }
     }
 #pragma omp critical(svr_shearwarp_records)
     records_.adopt(std::move(scratch.records));
