@@ -48,16 +48,10 @@ class PreclassifiedAxis {
   static std::shared_ptr<const PreclassifiedAxis> of(const ClassifiedVolume& cv, int axis);
 
   int stride() const { return stride_; }  // floats per record (2 + k + kt, padded to 4)
-  // Row j of slice k indexed by voxel i, as AxisEncoding::rowRecords.
-  const float* rowRecords(int k, int j) const {
-    return records_[k] +
-           (static_cast<std::ptrdiff_t>(encoding_->row(k, j).offset) - encoding_->row(k, j).lo) *
-               stride_;
-  }
-  const std::uint16_t* rowNormals(int k, int j) const {
-    return normals_[k] + static_cast<std::ptrdiff_t>(encoding_->row(k, j).offset) -
-           encoding_->row(k, j).lo;
-  }
+  // Slice k's classified records and normal indices, one per voxel record of the axis
+  // encoding and in its order (CellRun::record0 / record1 index them).
+  const float* sliceRecords(int k) const { return records_[k]; }
+  const std::uint16_t* sliceNormals(int k) const { return normals_[k]; }
   std::size_t bytes() const;
 
  private:

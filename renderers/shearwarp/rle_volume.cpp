@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <climits>
 #include <cmath>
 #include <cstring>
 #include <span>
@@ -176,7 +177,7 @@ void appendRuns(const std::uint8_t* occupied, int from, int cells, std::vector<C
     const int begin = i;
     while (i + 8 <= cells && eight(i) == kAll) i += 8;
     while (i < cells && occupied[i]) ++i;
-    runs.push_back({begin, i});
+    runs.push_back({begin, i, 0, 0});  // records placed by storeSegments
   }
 }
 
@@ -215,11 +216,11 @@ struct SliceSource {
   const Visibility& visibility;
 };
 
-// The voxel records of row j of slice k, voxels lo .. lo + count − 1: the bin coordinate (or
-// label number, from `bins`: the row's keys or label numbers) and the central differences of
-// the shading field, clamped at the border as the raycaster's, in world units.
+// The voxel records of one segment of row j of slice k, voxels lo .. lo + count − 1: the bin
+// coordinate (or label number, from `bins`: the row's keys or label numbers) and the central
+// differences of the shading field, clamped at the border as the raycaster's, in world units.
 void fillRowRecords(const SliceSource& src, const SliceGroup<float>& field, const float* bins,
-                    int k, int j, const RowSpan& span, VoxelRecord* out) {
+                    int k, int j, const RowSegment& span, VoxelRecord* out) {
   const SliceLayout& l = src.layout;
   const double* sp = &src.cv.spacing.x;
   const float h_i = static_cast<float>(0.5 / sp[src.axis_i]);
@@ -286,6 +287,53 @@ void findActiveCells(const SliceSource& src, int k, ActiveCells& active) {
   }
 }
 
+// Each voxel row's segments (the voxels that the runs of the cell rows either side of it reach,
+// merged where they meet or overlap), their places in the slice's records, row after row, and
+// each run's record0 / record1. Returns the number of records.
+std::int32_t storeSegments(SliceEncoding& s, int n_j) {
+  const auto runsOf = [&](int cj) {
+    return std::span<const CellRun>(s.runs.data() + s.run_offsets[cj],
+                                    s.runs.data() + s.run_offsets[cj + 1]);
+  };
+  s.segments.clear();
+  std::int32_t stored = 0;
+  for (int j = 0; j < n_j; ++j) {
+    s.segment_offsets[j] = static_cast<std::int32_t>(s.segments.size());
+    s.row_first[j] = stored;
+    const std::span<const CellRun> above = j > 0 ? runsOf(j - 1) : std::span<const CellRun>{};
+    const std::span<const CellRun> below = j + 1 < n_j ? runsOf(j) : std::span<const CellRun>{};
+    auto a = above.begin(), b = below.begin();
+    while (a != above.end() || b != below.end()) {  // both sorted: merged by begin
+      const CellRun& run = (b == below.end() || (a != above.end() && a->begin <= b->begin)) ? *a++ : *b++;
+      const bool open = static_cast<std::int32_t>(s.segments.size()) > s.segment_offsets[j];
+      RowSegment* last = open ? &s.segments.back() : nullptr;
+      if (last && run.begin <= last->lo + last->count)  // meets or overlaps: voxels begin .. end
+        last->count = std::max(last->count, run.end + 1 - last->lo);
+      else
+        s.segments.push_back({run.begin, run.end + 1 - run.begin, 0});
+    }
+    for (int g = s.segment_offsets[j]; g < static_cast<int>(s.segments.size()); ++g) {
+      s.segments[g].offset = stored;
+      stored += s.segments[g].count;
+    }
+  }
+  s.segment_offsets[n_j] = static_cast<std::int32_t>(s.segments.size());
+  s.row_first[n_j] = stored;
+  // A run of cell row j lies within one segment of voxel row j and one of row j + 1.
+  for (int cj = 0; cj + 1 < n_j; ++cj) {
+    const RowSegment* in[2] = {s.segments.data() + s.segment_offsets[cj],
+                               s.segments.data() + s.segment_offsets[cj + 1]};
+    for (CellRun& run : std::span<CellRun>(s.runs.data() + s.run_offsets[cj],
+                                           s.runs.data() + s.run_offsets[cj + 1])) {
+      for (const RowSegment*& g : in)
+        while (g->lo + g->count <= run.begin) ++g;
+      run.record0 = in[0]->offset + (run.begin - in[0]->lo);
+      run.record1 = in[1]->offset + (run.begin - in[1]->lo);
+    }
+  }
+  return stored;
+}
+
 // Slice k's runs and records. T: what the slices of `values` hold, the float values of a scalar
 // volume or a label map's 16-bit labels (read as such: a quarter of the memory traffic of the
 // labels' float copy that classification keeps for the other backends).
@@ -297,7 +345,8 @@ void encodeSlice(const SliceSource& src, const SliceGroup<T>& values,
   constexpr int B = ClassifiedVolume::kBlock;
   const int n_i = src.layout.n_i, n_j = src.layout.n_j;
   s.run_offsets.assign(n_j, 0);
-  s.rows.assign(n_j, RowSpan{});
+  s.segment_offsets.assign(n_j + 1, 0);
+  s.row_first.assign(n_j + 1, 0);
   if (!src.visibility.any) return;
   ActiveCells& active = scratch.active;
   findActiveCells(src, k, active);
@@ -338,31 +387,14 @@ void encodeSlice(const SliceSource& src, const SliceGroup<T>& values,
     }
   }
   s.run_offsets[n_j - 1] = static_cast<std::int32_t>(s.runs.size());
-  // Voxel row j is touched by the cells of cell rows j − 1 and j.
-  std::size_t stored = 0;
-  for (int j = 0; j < n_j; ++j) {
-    int lo = n_i, hi = -1;
-    for (int cj = std::max(j - 1, 0); cj <= std::min(j, n_j - 2); ++cj) {
-      const auto first = s.runs.begin() + s.run_offsets[cj];
-      const auto last = s.runs.begin() + s.run_offsets[cj + 1];
-      if (first == last) continue;
-      lo = std::min(lo, first->begin);
-      hi = std::max(hi, (last - 1)->end);  // cell end − 1 + its right voxel
-    }
-    RowSpan& r = s.rows[j];
-    r.offset = stored;
-    if (hi < lo) continue;
-    r.lo = lo;
-    r.count = hi - lo + 1;
-    stored += r.count;
-  }
+  const std::int32_t stored = storeSegments(s, n_j);
   s.records = scratch.records.allocate<VoxelRecord>(stored);
   s.record_count = stored;
   const float* bins = cv.labels ? scratch.labels.data() : scratch.keys.data();
   for (int j = 0; j < n_j; ++j)
-    if (s.rows[j].count > 0)
-      fillRowRecords(src, field, bins + static_cast<std::size_t>(j) * n_i, k, j, s.rows[j],
-                     s.records + s.rows[j].offset);
+    for (int g = s.segment_offsets[j]; g < s.segment_offsets[j + 1]; ++g)
+      fillRowRecords(src, field, bins + static_cast<std::size_t>(j) * n_i, k, j, s.segments[g],
+                     s.records + s.segments[g].offset);
 }
 
 }  // namespace
@@ -399,6 +431,10 @@ AxisEncoding::AxisEncoding(const ClassifiedVolume& cv, int axis)
     throw Error(fmt::format("shearwarp: a {}×{}×{} volume is too thin to shear (at least 2 "
                             "voxels along each axis)",
                             cv.dims[0], cv.dims[1], cv.dims[2]));
+  if (static_cast<std::int64_t>(n_i_) * n_j_ > INT32_MAX)  // records are indexed by int32
+    throw Error(fmt::format("shearwarp: a {}×{} slice of a {}×{}×{} volume is too large to encode "
+                            "(at most 2³¹ − 1 voxels a slice)",
+                            n_i_, n_j_, cv.dims[0], cv.dims[1], cv.dims[2]));
   const std::size_t stride[3] = {1, static_cast<std::size_t>(cv.dims[0]),
                                  static_cast<std::size_t>(cv.dims[0]) * cv.dims[1]};
   const SliceLayout layout{n_i_, n_j_, n_k_, stride[axis_i_], stride[axis_j_], stride[axis_]};
@@ -435,9 +471,17 @@ AxisEncoding::AxisEncoding(const ClassifiedVolume& cv, int axis)
 std::size_t AxisEncoding::bytes() const {
   std::size_t n = 0;
   for (const SliceEncoding& s : slices_)
-    n += s.run_offsets.size() * sizeof(std::int32_t) + s.runs.size() * sizeof(CellRun) +
-         s.rows.size() * sizeof(RowSpan) + s.record_count * sizeof(VoxelRecord);
+    n += (s.run_offsets.size() + s.segment_offsets.size() + s.row_first.size()) *
+             sizeof(std::int32_t) +
+         s.runs.size() * sizeof(CellRun) + s.segments.size() * sizeof(RowSegment) +
+         s.record_count * sizeof(VoxelRecord);
   return n;
+}
+
+const VoxelRecord* AxisEncoding::findVoxel(int k, int j, int i) const {
+  for (const RowSegment& g : segments(k, j))
+    if (i >= g.lo && i < g.lo + g.count) return slices_[k].records + g.offset + (i - g.lo);
+  return nullptr;
 }
 
 std::size_t AxisEncoding::storedVoxels() const {

@@ -32,20 +32,32 @@ struct VoxelRecord {
   float gradient[3];  // ∇ of the shading field, world units, central differences (as raycast)
 };
 
+// Non-transparent cells [begin, end) of cell row j, and where their voxels are stored: voxel i
+// (begin ≤ i ≤ end) of voxel row j is record record0 + (i − begin) of the slice's records, of
+// voxel row j + 1 record record1 + (i − begin). A sample takes its four corners from these two
+// offsets, whatever segments the rows hold.
 struct CellRun {
-  std::int32_t begin, end;  // non-transparent cells [begin, end) of one cell row
+  std::int32_t begin, end;
+  std::int32_t record0, record1;
 };
 
-struct RowSpan {
-  std::int32_t lo = 0, count = 0;  // voxels lo .. lo + count − 1 of the row are stored
-  std::size_t offset = 0;          // first record of the row in the slice's records
+// Voxels lo .. lo + count − 1 of a voxel row, stored at records offset .. offset + count − 1 of
+// the slice. A row holds the voxels that the runs of the cell rows either side of it reach,
+// merged into segments where they meet or overlap; the voxels between segments are not stored.
+struct RowSegment {
+  std::int32_t lo = 0, count = 0;
+  std::int32_t offset = 0;
 };
 
 struct SliceEncoding {
   std::vector<std::int32_t> run_offsets;  // n_j: cell row j's runs are [off[j], off[j + 1])
   std::vector<CellRun> runs;
-  std::vector<RowSpan> rows;  // n_j voxel rows
-  VoxelRecord* records = nullptr;  // record_count, in the axis encoding's arena
+  // n_j + 1: voxel row j's segments are [segment_offsets[j], segment_offsets[j + 1]); its
+  // records begin at the first one's offset, or where the next row's begin.
+  std::vector<std::int32_t> segment_offsets;
+  std::vector<RowSegment> segments;
+  std::vector<std::int32_t> row_first;  // n_j + 1: voxel row j's records are [first[j], first[j + 1])
+  VoxelRecord* records = nullptr;       // record_count, in the axis encoding's arena
   std::size_t record_count = 0;
 };
 
@@ -66,21 +78,15 @@ class AxisEncoding {
     const SliceEncoding& s = slices_[k];
     return {s.runs.data() + s.run_offsets[j], s.runs.data() + s.run_offsets[j + 1]};
   }
-  const RowSpan& row(int k, int j) const { return slices_[k].rows[j]; }
-  // Record of voxel i of row j; valid for lo ≤ i < lo + count.
-  const VoxelRecord& voxel(int k, int j, int i) const {
+  std::span<const RowSegment> segments(int k, int j) const {
     const SliceEncoding& s = slices_[k];
-    const RowSpan& r = s.rows[j];
-    return s.records[r.offset + (i - r.lo)];
+    return {s.segments.data() + s.segment_offsets[j], s.segments.data() + s.segment_offsets[j + 1]};
   }
-  // Row j's records indexed by voxel i, valid for lo ≤ i < lo + count: voxel(k, j, i) is
-  // rowRecords(k, j)[i] (a pointer offset by −lo, set up once per row instead of per sample).
-  const VoxelRecord* rowRecords(int k, int j) const {
-    const SliceEncoding& s = slices_[k];
-    const RowSpan& r = s.rows[j];
-    return s.records + static_cast<std::ptrdiff_t>(r.offset) - r.lo;
-  }
-  // Slice k's records, row after row (row j's from rows[j].offset).
+  // Record of voxel i of row j of slice k, or nullptr where the row does not store it.
+  const VoxelRecord* findVoxel(int k, int j, int i) const;
+  // The first record of voxel row j (rows are stored one after the other, j rising).
+  std::int32_t rowFirst(int k, int j) const { return slices_[k].row_first[j]; }
+  // Slice k's records, row after row; a run's record0 / record1 index them.
   std::span<const VoxelRecord> sliceRecords(int k) const {
     return {slices_[k].records, slices_[k].record_count};
   }

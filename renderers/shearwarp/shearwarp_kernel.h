@@ -156,7 +156,10 @@ SVR_SHEARWARP_INLINE float compositeSample(float* S, int k, const float* r0, con
 struct SampleBatch {
   static constexpr int kMax = 32;
   int count = 0;
-  int u[kMax], i0[kMax];
+  int u[kMax];
+  // The records of the sample's cell's corners i0 and i0 + 1 in its two voxel rows: r0, r0 + 1
+  // and r1, r1 + 1 of the slice's records (CellRun::record0 / record1).
+  int r0[kMax], r1[kMax];
   float fi[kMax];
   bool opaque[kMax];  // set by the kernel: the pixel became opaque
 };
@@ -228,9 +231,13 @@ SVR_SHEARWARP_INLINE void forEachSample(const CompositeJob& job, int v, int slic
          own_end});
     // The count in a register (flush, out of line, sees it only when called).
     int n = batch.count;
+    const int to_row0 = run.record0 - run.begin, to_row1 = run.record1 - run.begin;
     for (int u = nextLive(links, u_begin); u < u_end; u = nextLive(links, u + 1)) {
       batch.u[n] = u;
-      cellOf(run, u, batch.i0[n], batch.fi[n]);
+      int i0;
+      cellOf(run, u, i0, batch.fi[n]);
+      batch.r0[n] = i0 + to_row0;
+      batch.r1[n] = i0 + to_row1;
       if (++n == SampleBatch::kMax) {
         batch.count = n;
         flush();
@@ -257,17 +264,19 @@ SVR_SHEARWARP_INLINE void compositeSlice(const CompositeJob& job, int v, int sli
   float* row = job.image->pixel(0, v);
   const int stride = job.image->stride;
   forEachSample(job, v, slice, links, [&](int j0, float fj) __attribute__((always_inline)) {
-    // Voxel i of rows j0 and j0 + 1, for the i the cell runs touch.
-    const VoxelRecord* rec0 = enc.rowRecords(slice, j0);
-    const VoxelRecord* rec1 = enc.rowRecords(slice, j0 + 1);
-    // The row the next scanline adds (the rows are consecutive in memory): fetched while this
-    // scanline composites, a line per sample, since the records stream from beyond the caches.
-    const VoxelRecord* rec2 = enc.rowRecords(slice, std::min(j0 + 2, enc.rowCount() - 1));
-    return [&, rec0, rec1, rec2, fj](SampleBatch& b) __attribute__((always_inline)) {
+    const VoxelRecord* rec = enc.sliceRecords(slice).data();
+    // The row the next scanline adds (rows follow each other in the slice's records): fetched
+    // while this scanline composites, a line per sample, since the records stream from beyond
+    // the caches. Its voxel is taken to lie as far beyond the sample's record of row j0 + 1 as
+    // that row's records are long: exact where the two rows hold the same segments; a hint.
+    const int ahead = j0 + 2 < enc.rowCount()
+                          ? enc.rowFirst(slice, j0 + 2) - enc.rowFirst(slice, j0 + 1)
+                          : 0;
+    return [&, rec, ahead, fj](SampleBatch& b) __attribute__((always_inline)) {
       const auto corners = [&](int p, const VoxelRecord* c[4], float w[4]) {
-        const int i0 = b.i0[p];
+        const int r0 = b.r0[p], r1 = b.r1[p];
         const float fi = b.fi[p];
-        c[0] = rec0 + i0, c[1] = rec0 + i0 + 1, c[2] = rec1 + i0, c[3] = rec1 + i0 + 1;
+        c[0] = rec + r0, c[1] = rec + r0 + 1, c[2] = rec + r1, c[3] = rec + r1 + 1;
         w[0] = (1 - fi) * (1 - fj), w[1] = fi * (1 - fj), w[2] = (1 - fi) * fj, w[3] = fi * fj;
       };
       // Stage 1, eight pixels at a time: the records (bin coordinate and gradient, one vector
@@ -280,11 +289,11 @@ SVR_SHEARWARP_INLINE void compositeSlice(const CompositeJob& job, int v, int sli
       const Float4 fj4 = splat4(fj);
       // Bilinear as three lerps (along i in both rows, then along j): no corner weights.
       const auto blended = [&](int p) {
-        const int i0 = b.i0[p];
-        __builtin_prefetch(rec2 + i0);
+        const int r0 = b.r0[p], r1 = b.r1[p];
+        __builtin_prefetch(rec + r1 + ahead);
         const Float4 fi4 = splat4(b.fi[p]);
-        const Float4 a0 = load4(&rec0[i0].bin), a1 = load4(&rec0[i0 + 1].bin);
-        const Float4 b0 = load4(&rec1[i0].bin), b1 = load4(&rec1[i0 + 1].bin);
+        const Float4 a0 = load4(&rec[r0].bin), a1 = load4(&rec[r0 + 1].bin);
+        const Float4 b0 = load4(&rec[r1].bin), b1 = load4(&rec[r1 + 1].bin);
         const Float4 top = a0 + fi4 * (a1 - a0), bottom = b0 + fi4 * (b1 - b0);
         return top + fj4 * (bottom - top);
       };
@@ -350,18 +359,15 @@ SVR_SHEARWARP_INLINE void compositeSlicePre(const CompositeJob& job, int v, int 
   float* row = job.image->pixel(0, v);
   const int stride = job.image->stride;
   forEachSample(job, v, slice, links, [&](int j0, float fj) __attribute__((always_inline)) {
-    const float* rec0 = pre.rowRecords(slice, j0);
-    const float* rec1 = pre.rowRecords(slice, j0 + 1);
-    const std::uint16_t* nrm0 = pre.rowNormals(slice, j0);
-    const std::uint16_t* nrm1 = pre.rowNormals(slice, j0 + 1);
-    return [&, rec0, rec1, nrm0, nrm1, fj](SampleBatch& b)
-               __attribute__((always_inline)) {
+    const float* rec = pre.sliceRecords(slice);
+    const std::uint16_t* nrm = pre.sliceNormals(slice);
+    return [&, rec, nrm, fj](SampleBatch& b) __attribute__((always_inline)) {
       for (int p = 0; p < b.count; ++p) {
-        const int i0 = b.i0[p];
+        const int r0 = b.r0[p], r1 = b.r1[p];
         const float fi = b.fi[p];
-        const float* c[4] = {rec0 + i0 * rs, rec0 + (i0 + 1) * rs, rec1 + i0 * rs,
-                             rec1 + (i0 + 1) * rs};
-        const std::uint16_t nidx[4] = {nrm0[i0], nrm0[i0 + 1], nrm1[i0], nrm1[i0 + 1]};
+        const float* c[4] = {rec + std::size_t(r0) * rs, rec + std::size_t(r0 + 1) * rs,
+                             rec + std::size_t(r1) * rs, rec + std::size_t(r1 + 1) * rs};
+        const std::uint16_t nidx[4] = {nrm[r0], nrm[r0 + 1], nrm[r1], nrm[r1 + 1]};
         const float w[4] = {(1 - fi) * (1 - fj), fi * (1 - fj), (1 - fi) * fj, fi * fj};
         float* S = row + static_cast<std::size_t>(b.u[p]) * stride;
         float* T = S + k;

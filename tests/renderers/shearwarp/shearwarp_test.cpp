@@ -163,6 +163,12 @@ void expectRoundTrip(const ClassifiedVolume& cv) {
         for (const auto& run : enc.runs(k, j)) {
           ASSERT_LT(run.begin, run.end);
           for (int i = run.begin; i < run.end; ++i) decoded[i] = true;
+          // The run's record offsets name its voxels in both rows.
+          const shearwarp::VoxelRecord* records = enc.sliceRecords(k).data();
+          for (int i = run.begin; i <= run.end; ++i) {
+            ASSERT_EQ(records + run.record0 + (i - run.begin), enc.findVoxel(k, j, i));
+            ASSERT_EQ(records + run.record1 + (i - run.begin), enc.findVoxel(k, j + 1, i));
+          }
         }
         for (int i = 0; i + 1 < enc.rowLength(); ++i) {
           int p[3];
@@ -178,10 +184,9 @@ void expectRoundTrip(const ClassifiedVolume& cv) {
             q[ai] += n & 1;
             q[aj] += n >> 1;
             const int row = q[aj], col = q[ai];
-            const auto& span = enc.row(k, row);
-            ASSERT_GE(col, span.lo);
-            ASSERT_LT(col, span.lo + span.count);
-            const auto& rec = enc.voxel(k, row, col);
+            const shearwarp::VoxelRecord* stored = enc.findVoxel(k, row, col);
+            ASSERT_NE(stored, nullptr) << axis << " " << k << " " << row << " " << col;
+            const auto& rec = *stored;
             const std::size_t index =
                 (static_cast<std::size_t>(q[2]) * cv.dims[1] + q[1]) * cv.dims[0] + q[0];
             ASSERT_EQ(rec.bin, cv.labels ? float(cv.label[index]) : binCoordinate(cv, cv.values[index]));
@@ -200,6 +205,26 @@ void expectRoundTrip(const ClassifiedVolume& cv) {
             }
           }
         }
+      }
+    // A row stores exactly the voxels that the runs of the cell rows either side of it reach,
+    // in sorted segments, one after the other from the row's first record.
+    for (int k = 0; k < enc.slices(); ++k)
+      for (int j = 0; j < enc.rowCount(); ++j) {
+        std::vector<bool> reached(enc.rowLength(), false);
+        for (int cj = std::max(j - 1, 0); cj <= std::min(j, enc.rowCount() - 2); ++cj)
+          for (const auto& run : enc.runs(k, cj))
+            for (int i = run.begin; i <= run.end; ++i) reached[i] = true;
+        for (int i = 0; i < enc.rowLength(); ++i)
+          ASSERT_EQ(reached[i], enc.findVoxel(k, j, i) != nullptr)
+              << axis << " " << k << " " << j << " " << i;
+        std::int32_t next = enc.rowFirst(k, j), end = -1;
+        for (const auto& segment : enc.segments(k, j)) {
+          ASSERT_GT(segment.lo, end);  // sorted, apart
+          ASSERT_EQ(segment.offset, next);
+          next += segment.count;
+          end = segment.lo + segment.count;
+        }
+        ASSERT_EQ(next, enc.rowFirst(k, j + 1));
       }
     // Run-length encoding is worth it: far fewer voxels are stored than the volume has.
     const std::size_t total = static_cast<std::size_t>(cv.dims[0]) * cv.dims[1] * cv.dims[2];
