@@ -116,9 +116,11 @@ struct Visibility {
   bool contiguous = true;
   const ClassifiedVolume* classified;
   std::vector<int> prefix;  // nonzeroOpacityPrefix, for the non-contiguous case
+  std::vector<float> label_key;  // label maps: each label's key (1 visible, 0 hidden)
 
   explicit Visibility(const ClassifiedVolume& cv) : classified(&cv) {
     if (cv.labels) {
+      for (float a : cv.alpha) label_key.push_back(a > 0.f ? 1.f : 0.f);
       any = std::any_of(cv.alpha.begin(), cv.alpha.end(), [](float a) { return a > 0.f; });
       above = 0.f;
       return;
@@ -201,7 +203,6 @@ struct ActiveCells {
 struct EncoderScratch {
   ActiveCells active;
   std::vector<float> keys;          // the slice's keys, row after row
-  std::vector<float> labels;        // label maps: the slice's labels as floats, as keys are
   std::vector<std::uint8_t> occupied;  // one cell row
   GatherBuffer<float> values, field;   // SliceGroup's gathered slices
   GatherBuffer<std::uint16_t> label_planes;
@@ -217,9 +218,10 @@ struct SliceSource {
 };
 
 // The voxel records of one segment of row j of slice k, voxels lo .. lo + count − 1: the bin
-// coordinate (or label number, from `bins`: the row's keys or label numbers) and the central
+// coordinate (or label number, from `bins`: the row's keys, or its 16-bit labels) and the central
 // differences of the shading field, clamped at the border as the raycaster's, in world units.
-void fillRowRecords(const SliceSource& src, const SliceGroup<float>& field, const float* bins,
+template <class Bin>
+void fillRowRecords(const SliceSource& src, const SliceGroup<float>& field, const Bin* bins,
                     int k, int j, const RowSegment& span, VoxelRecord* out) {
   const SliceLayout& l = src.layout;
   const double* sp = &src.cv.spacing.x;
@@ -248,7 +250,10 @@ void fillRowRecords(const SliceSource& src, const SliceGroup<float>& field, cons
   for (; n + 4 <= span.count && span.lo + n + 4 < l.n_i; n += 4) {
     const int i = span.lo + n;
     Float4 lane[4];
-    lane[0] = load4(bins + i);
+    if constexpr (std::is_same_v<Bin, float>)
+      lane[0] = load4(bins + i);
+    else
+      lane[0] = Float4{float(bins[i]), float(bins[i + 1]), float(bins[i + 2]), float(bins[i + 3])};
     lane[1 + src.axis_i] = (load4(f + i + 1) - load4(f + i - 1)) * splat4(h_i);
     lane[1 + src.axis_j] = (load4(f_jp + i) - load4(f_jm + i)) * splat4(h_j);
     lane[1 + src.axis] = (load4(f_kp + i) - load4(f_km + i)) * splat4(h_k);
@@ -355,7 +360,6 @@ void encodeSlice(const SliceSource& src, const SliceGroup<T>& values,
   // the cell rows either side of the voxel row reach: from the first active cell to the last
   // one's right voxel, so that every record the runs below store has its key.
   scratch.keys.resize(static_cast<std::size_t>(n_i) * n_j);
-  if (cv.labels) scratch.labels.resize(scratch.keys.size());
   const SliceRows<T> rows = values.slice(k);
   for (int j = 0; j < n_j; ++j) {
     int lo = n_i, hi = -1;
@@ -366,13 +370,16 @@ void encodeSlice(const SliceSource& src, const SliceGroup<T>& values,
       hi = std::max(hi, ranges.back().end);  // the last cell's right voxel
     }
     const T* v = rows.row(j);
+    // The next row's lines, fetched while this one is keyed: in place, the rows of a slice are a
+    // volume row or slice apart, each on a page of its own, where the hardware prefetcher
+    // starts cold (the load of the labels was most of the keys' time).
+    if (j + 1 < n_j)
+      for (int i = lo; i <= hi; i += 64 / static_cast<int>(sizeof(T)))
+        __builtin_prefetch(rows.row(j + 1) + i);
     float* key = scratch.keys.data() + static_cast<std::size_t>(j) * n_i;
     if constexpr (std::is_same_v<T, std::uint16_t>) {
-      float* label = scratch.labels.data() + static_cast<std::size_t>(j) * n_i;
-      for (int i = lo; i <= hi; ++i) {
-        key[i] = cv.alpha[v[i]] > 0.f ? 1.f : 0.f;
-        label[i] = v[i];
-      }
+      const float* visible = src.visibility.label_key.data();
+      for (int i = lo; i <= hi; ++i) key[i] = visible[v[i]];
     } else {
       for (int i = lo; i <= hi; ++i) key[i] = binCoordinate(cv, v[i]);
     }
@@ -390,11 +397,17 @@ void encodeSlice(const SliceSource& src, const SliceGroup<T>& values,
   const std::int32_t stored = storeSegments(s, n_j);
   s.records = scratch.records.allocate<VoxelRecord>(stored);
   s.record_count = stored;
-  const float* bins = cv.labels ? scratch.labels.data() : scratch.keys.data();
-  for (int j = 0; j < n_j; ++j)
+  for (int j = 0; j < n_j; ++j) {
+    // A label map's records hold its labels, read as such; a scalar volume's its keys.
+    const auto* bins = [&] {
+      if constexpr (std::is_same_v<T, std::uint16_t>)
+        return rows.row(j);
+      else
+        return static_cast<const float*>(scratch.keys.data() + static_cast<std::size_t>(j) * n_i);
+    }();
     for (int g = s.segment_offsets[j]; g < s.segment_offsets[j + 1]; ++g)
-      fillRowRecords(src, field, bins + static_cast<std::size_t>(j) * n_i, k, j, s.segments[g],
-                     s.records + s.segments[g].offset);
+      fillRowRecords(src, field, bins, k, j, s.segments[g], s.records + s.segments[g].offset);
+  }
 }
 
 }  // namespace
