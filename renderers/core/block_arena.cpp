@@ -5,19 +5,18 @@
 #include <cstdlib>
 #include <new>
 
-#include "renderers/core/huge_pages.h"
-
 namespace svr {
 
-void BlockArena::Free::operator()(std::byte* p) const { releaseHugePages(p); }
+void BlockArena::Free::operator()(std::byte* p) const { std::free(p); }
 
 void* BlockArena::allocateBytes(std::size_t bytes, std::size_t align) {
   const std::size_t pad = (align - reinterpret_cast<std::uintptr_t>(next_) % align) % align;
   if (next_ == nullptr || pad + bytes > left_) {
-    // Whole huge pages, aligned to one, so that every page of the block can be a huge one.
-    const std::size_t size =
-        (std::max(bytes, kBlockBytes) + kHugePage - 1) / kHugePage * kHugePage;
-    auto* memory = static_cast<std::byte*>(allocateHugePages(size));
+    // Cache-line aligned, in whole lines (as aligned_alloc requires a multiple of the alignment).
+    constexpr std::size_t kLine = 64;
+    const std::size_t size = (std::max(bytes, kBlockBytes) + kLine - 1) / kLine * kLine;
+    auto* memory = static_cast<std::byte*>(std::aligned_alloc(kLine, size));
+    if (!memory) throw std::bad_alloc();
     blocks_.emplace_back(memory);
     next_ = memory, left_ = size;
     return allocateBytes(bytes, align);

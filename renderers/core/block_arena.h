@@ -1,20 +1,22 @@
 #pragma once
 // Memory for many arrays that are filled once and freed together (shear-warp's voxel records:
-// tens of MiB a principal axis, in a few hundred slices), taken from large blocks on huge pages
-// (huge_pages.h): the encoder's records took 20–30 ms of 4 KiB page faults for 36 MiB.
+// tens of MiB a principal axis, in a few hundred slices; the encoder's gathered slices), taken
+// from large blocks. The blocks are ordinary 4 KiB pages, not huge ones (huge_pages.h): they are
+// written once, in order, where a huge page saves little, and in this VM the first touch of
+// fresh huge pages is slow and erratic (2 MiB blocks the guest had freed are handed back to the
+// host, which must supply them again): with the records on huge pages, 4 of 12 first frames of
+// the frog took over 3× a steady frame, against 1 of 12 on 4 KiB pages, steady frames unchanged.
 
 #include <cstddef>
 #include <memory>
 #include <type_traits>
 #include <vector>
 
-#include "renderers/core/huge_pages.h"
-
 namespace svr {
 
 class BlockArena {
  public:
-  static constexpr std::size_t kBlockBytes = 2 * kHugePage;  // larger requests get their own
+  static constexpr std::size_t kBlockBytes = std::size_t{4} << 20;  // larger requests get their own
 
   // Uninitialised room for n objects of a trivially destructible type; valid until the arena
   // (or the one that adopted it) is destroyed. Throws std::bad_alloc.
