@@ -3,9 +3,10 @@
 #include <fmt/format.h>
 
 #include <algorithm>
-#include <climits>
 #include <cmath>
+#include <cstdint>
 #include <cstring>
+#include <limits>
 #include <span>
 #include <type_traits>
 
@@ -309,7 +310,8 @@ std::int32_t storeSegments(SliceEncoding& s, int n_j) {
     const std::span<const CellRun> below = j + 1 < n_j ? runsOf(j) : std::span<const CellRun>{};
     auto a = above.begin(), b = below.begin();
     while (a != above.end() || b != below.end()) {  // both sorted: merged by begin
-      const CellRun& run = (b == below.end() || (a != above.end() && a->begin <= b->begin)) ? *a++ : *b++;
+      const bool from_above = b == below.end() || (a != above.end() && a->begin <= b->begin);
+      const CellRun& run = from_above ? *a++ : *b++;
       const bool open = static_cast<std::int32_t>(s.segments.size()) > s.segment_offsets[j];
       RowSegment* last = open ? &s.segments.back() : nullptr;
       if (last && run.begin <= last->lo + last->count)  // meets or overlaps: voxels begin .. end
@@ -444,9 +446,10 @@ AxisEncoding::AxisEncoding(const ClassifiedVolume& cv, int axis)
     throw Error(fmt::format("shearwarp: a {}×{}×{} volume is too thin to shear (at least 2 "
                             "voxels along each axis)",
                             cv.dims[0], cv.dims[1], cv.dims[2]));
-  if (static_cast<std::int64_t>(n_i_) * n_j_ > INT32_MAX)  // records are indexed by int32
-    throw Error(fmt::format("shearwarp: a {}×{} slice of a {}×{}×{} volume is too large to encode "
-                            "(at most 2³¹ − 1 voxels a slice)",
+  // A slice's records are indexed by int32 (CellRun, RowSegment).
+  if (static_cast<std::int64_t>(n_i_) * n_j_ > std::numeric_limits<std::int32_t>::max())
+    throw Error(fmt::format("shearwarp: a {}×{} slice of a {}×{}×{} volume is too large to "
+                            "encode (at most 2³¹ − 1 voxels a slice)",
                             n_i_, n_j_, cv.dims[0], cv.dims[1], cv.dims[2]));
   const std::size_t stride[3] = {1, static_cast<std::size_t>(cv.dims[0]),
                                  static_cast<std::size_t>(cv.dims[0]) * cv.dims[1]};

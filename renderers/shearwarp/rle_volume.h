@@ -52,11 +52,12 @@ struct RowSegment {
 struct SliceEncoding {
   std::vector<std::int32_t> run_offsets;  // n_j: cell row j's runs are [off[j], off[j + 1])
   std::vector<CellRun> runs;
-  // n_j + 1: voxel row j's segments are [segment_offsets[j], segment_offsets[j + 1]); its
-  // records begin at the first one's offset, or where the next row's begin.
+  // n_j + 1: voxel row j's segments are [segment_offsets[j], segment_offsets[j + 1]).
   std::vector<std::int32_t> segment_offsets;
   std::vector<RowSegment> segments;
-  std::vector<std::int32_t> row_first;  // n_j + 1: voxel row j's records are [first[j], first[j + 1])
+  // n_j + 1: voxel row j's records are [row_first[j], row_first[j + 1]) (kept, not searched for:
+  // the kernels ask for it once per scanline and slice).
+  std::vector<std::int32_t> row_first;
   VoxelRecord* records = nullptr;       // record_count, in the axis encoding's arena
   std::size_t record_count = 0;
 };
