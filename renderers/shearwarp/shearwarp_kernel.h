@@ -37,7 +37,8 @@ namespace svr::shearwarp::SVR_SHEARWARP_ISA {
 
 // The helpers and the lambdas in the kernels carry no target attribute of their own (GCC
 // would refuse to inline a target function into a lambda without it): they are always_inline,
-// and compositeBand, which has the attribute, compiles them for its instruction set.
+// and compositeBand, which has the attribute, compiles them for its instruction set. The one
+// lambda left out of line (forEachSample's flush) carries the attribute itself.
 #define SVR_SHEARWARP_INLINE [[gnu::always_inline]] inline
 
 SVR_SHEARWARP_INLINE int nextLive(int* links, int u) {
@@ -161,13 +162,18 @@ struct SampleBatch {
   // and r1, r1 + 1 of the slice's records (CellRun::record0 / record1).
   int r0[kMax], r1[kMax];
   float fi[kMax];
-  bool opaque[kMax];  // set by the kernel: the pixel became opaque
 };
+
+// A pixel whose largest T fell below the threshold is opaque: links skips it from the next
+// slice on (set as the kernel composites it, not in a pass over the batch afterwards).
+SVR_SHEARWARP_INLINE void markIfOpaque(int* links, int u, float tmax, float threshold) {
+  if (tmax < threshold) links[u] = u + 1;
+}
 
 // Every live intermediate pixel u of scanline v that slice `slice`'s cell runs cover, in
 // batches: perRow(j0, fj) is called once with the cell row and its fraction along j, and
-// returns the function composite(SampleBatch&), which composites the batch's pixels and flags
-// those that became opaque (links then skips them from the next slice on).
+// returns the function composite(SampleBatch&), which composites the batch's pixels and marks
+// those that became opaque (markIfOpaque).
 template <class PerRow>
 SVR_SHEARWARP_INLINE void forEachSample(const CompositeJob& job, int v, int slice,
                                         int* links, const PerRow& perRow) {
@@ -215,11 +221,11 @@ SVR_SHEARWARP_INLINE void forEachSample(const CompositeJob& job, int v, int slic
     }
   };
   SampleBatch batch;
-  const auto flush = [&] {
+  // Out of line (see the count below), so it needs the instruction set's attribute itself:
+  // without it the batch's whole arithmetic, inlined here, was compiled for the baseline.
+  const auto flush = [&]() SVR_SHEARWARP_TARGET {
     job.image->touch(v, batch.u[0], batch.u[batch.count - 1] + 1);  // u rises along a scanline
     composite(batch);
-    for (int p = 0; p < batch.count; ++p)
-      if (batch.opaque[p]) links[batch.u[p]] = batch.u[p] + 1;
     batch.count = 0;
   };
   for (const CellRun& run : enc.runs(slice, j0)) {
@@ -337,7 +343,7 @@ SVR_SHEARWARP_INLINE void compositeSlice(const CompositeJob& job, int v, int sli
           tmax = compositeSample<K, kSpectralT>(S, k, table.row(e0s[p]), table.row(e1s[p]),
                                                 fracs[p], shade[p], highlight[p], white);
         }
-        b.opaque[p] = tmax < job.threshold;
+        markIfOpaque(links, b.u[p], tmax, job.threshold);
       }
     };
   });
@@ -392,7 +398,7 @@ SVR_SHEARWARP_INLINE void compositeSlicePre(const CompositeJob& job, int v, int 
                                              w[2] * c[2][o] + w[3] * c[3][o]);
           tmax = std::max(tmax, T[ch]);
         }
-        b.opaque[p] = tmax < job.threshold;
+        markIfOpaque(links, b.u[p], tmax, job.threshold);
       }
     };
   });
