@@ -23,6 +23,7 @@ std::string shown(const std::string& value) {
 QueryParams::QueryParams(const std::multimap<std::string, std::string>& params,
                          std::initializer_list<const char*> known) {
   for (const auto& [key, value] : params) {
+    if (key == kTokenParameter) continue;  // every path's: RequestGuard has checked it
     if (std::find_if(known.begin(), known.end(), [&](const char* k) { return key == k; }) ==
         known.end()) {
       std::string list;

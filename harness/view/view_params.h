@@ -13,6 +13,9 @@ struct BadRequest : std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
+// The access token, which any path takes (harness/view/request_guard.h checks it before routing).
+inline constexpr const char* kTokenParameter = "token";
+
 class QueryParams {
  public:
   // `known`: the keys this endpoint takes; any other key, or a repeated one, is a BadRequest.

@@ -5,6 +5,7 @@
 
 #include <sys/socket.h>
 
+#include <optional>
 #include <sstream>
 
 #include "spectral/error.h"
@@ -34,13 +35,16 @@ void answerJson(httplib::Response& res, const nlohmann::json& body) {
 }
 
 // Runs a handler, turning what it throws into the answer the API promises: BadRequest → 400,
-// svr::Error (a render or file that failed) → `error_status` with the reason.
+// SceneFileChanged → 409, svr::Error (a render or file that failed) → `error_status` with the
+// reason.
 template <class F>
 void guarded(httplib::Response& res, int error_status, F&& f) {
   try {
     f();
   } catch (const BadRequest& e) {
     answer(res, 400, e.what());
+  } catch (const SceneFileChanged& e) {
+    answer(res, 409, e.what());
   } catch (const Error& e) {
     answer(res, error_status, e.what());
   } catch (const std::bad_alloc&) {
@@ -96,7 +100,8 @@ ViewServer::ViewServer(ViewSession& session)
 
 ViewServer::~ViewServer() = default;
 
-int ViewServer::bind(const std::string& host, int port) {
+int ViewServer::bind(const std::string& host, int port, const std::string& token,
+                     const std::vector<std::string>& extra_hosts) {
   const int bound = port == 0 ? server_->bind_to_any_port(host) : server_->bind_to_port(host, port) ? port : -1;
   if (bound <= 0)
     throw Error(fmt::format("view: cannot listen on {}:{} (in use, or not an address of this "
@@ -104,7 +109,35 @@ int ViewServer::bind(const std::string& host, int port) {
   // Debian's libcpp-httplib is built with an accept queue of 5: a burst of connections beyond
   // it waits for TCP's SYN retries (1 s, 3 s, 7 s, …). Listening again only resizes the queue.
   if (listen_socket_ >= 0) ::listen(listen_socket_, SOMAXCONN);
+  guard_ = std::make_unique<RequestGuard>(host, bound, token, extra_hosts);
   return bound;
+}
+
+bool ViewServer::refused(const httplib::Request& req, httplib::Response& res) const {
+  if (!guard_) {
+    answer(res, 503, "the server is not bound yet");
+    return true;
+  }
+  RequestCredentials credentials;
+  const auto header = [&](const char* key) -> std::optional<std::string> {
+    const size_t n = req.get_header_value_count(key);
+    if (n > 1) credentials.repeated.push_back(key);
+    return n ? std::optional(req.get_header_value(key)) : std::nullopt;
+  };
+  credentials.host = header("Host");
+  credentials.origin = header("Origin");
+  credentials.cookie = header("Cookie");
+  const size_t tokens = req.params.count("token");
+  if (tokens > 1) credentials.repeated.push_back("token");
+  if (tokens) credentials.token = req.params.find("token")->second;
+  const GuardVerdict verdict = guard_->check(credentials);
+  if (verdict.status) {
+    answer(res, verdict.status, verdict.message);
+    return true;
+  }
+  if (verdict.set_cookie && (req.path == "/" || req.path == "/index.html"))
+    res.set_header("Set-Cookie", guard_->setCookieValue());
+  return false;
 }
 
 void ViewServer::listen() { server_->listen_after_bind(); }
@@ -171,6 +204,10 @@ void ViewServer::answerSaveMix(const httplib::Request& req, httplib::Response& r
 
 void ViewServer::routes() {
   httplib::Server& s = *server_;
+  s.set_pre_routing_handler([this](const httplib::Request& req, httplib::Response& res) {
+    return refused(req, res) ? httplib::Server::HandlerResponse::Handled
+                             : httplib::Server::HandlerResponse::Unhandled;
+  });
   s.Get("/api/scene", [this](const httplib::Request& req, httplib::Response& res) {
     guarded(res, 500, [&] {
       QueryParams(req.params, {});

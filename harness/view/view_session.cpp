@@ -6,19 +6,20 @@
 #include <chrono>
 #include <cmath>
 #include <cstring>
-#include <fstream>
 #include <regex>
-#include <sstream>
 
 #include "renderers/core/scene_render.h"
 #include "renderers/registry.h"
 #include "spectral/atomic_file.h"
 #include "spectral/error.h"
+#include "spectral/text_file.h"
+#include "harness/view/json_text_edit.h"
 
 namespace svr {
 
 ViewSession::ViewSession(const ViewOptions& options)
     : options_(options),
+      scene_text_(readTextFile(options.scene, "scene file")),
       grid_(WavelengthGrid::standard()),
       library_(SpectrumLibrary::load(options.data_dir, grid_)),
       observer_(Observer::cie1931(options.data_dir, grid_)),
@@ -99,28 +100,43 @@ void ViewSession::saveMix(const std::string& name,
   if (!(sum > 0)) throw Error("mix weights are all 0");
 
   std::lock_guard lock(file_mutex_);
-  std::ifstream in(options_.scene);
-  std::stringstream text;
-  text << in.rdbuf();
-  nlohmann::ordered_json doc = nlohmann::ordered_json::parse(text.str(), nullptr, false);
-  if (!in || doc.is_discarded() || !doc.is_object())
-    throw Error(fmt::format("{}: cannot read the scene file back to add the mix", options_.scene));
-  nlohmann::ordered_json& lights = doc["lights"];
+  const std::string& file = options_.scene;
+  std::string text;
+  try {
+    text = readTextFile(file, "scene file");
+  } catch (const Error& e) {
+    throw SceneFileChanged(fmt::format("{} (it was there when svr view loaded it): the mix is not saved", e.what()));
+  }
+  if (text != scene_text_)
+    throw SceneFileChanged(fmt::format("{} changed on disk since svr view loaded it: the mix is not "
+                                       "saved over it (restart svr view to load the new file)", file));
+  const nlohmann::ordered_json doc = nlohmann::ordered_json::parse(text, nullptr, false);
+  if (doc.is_discarded() || !doc.is_object() || !doc.value("lights", nlohmann::ordered_json::array()).is_array())
+    throw Error(fmt::format("{}: cannot read the scene file back to add the mix", file));
+  const nlohmann::ordered_json lights = doc.value("lights", nlohmann::ordered_json::array());
+  // A light is named by its "name", or, written as a bare string, by the library name it is.
+  const auto listed = [&](const std::string& light) {
+    return std::any_of(lights.begin(), lights.end(), [&](const auto& l) {
+      return (l.is_string() && l == light) || (l.is_object() && l.value("name", "") == light);
+    });
+  };
+  // New lights are written as the file writes its last one: a bare name or an object.
+  const bool bare = !lights.empty() && lights.back().is_string();
   nlohmann::ordered_json mix = nlohmann::ordered_json::object();
   for (const auto& [light, w] : weights) {
     const bool in_scene = std::any_of(scene_.lights.begin(), scene_.lights.end(),
                                       [&](const SceneLight& l) { return l.name == light; });
-    if (!in_scene) {
+    if (!in_scene && !listed(light)) {
       library_.get(light);  // an unknown name fails here, naming close ones
-      const bool listed = std::any_of(lights.begin(), lights.end(), [&](const auto& l) {
-        return l.is_object() && l.value("name", "") == light;
-      });
-      if (!listed) lights.push_back({{"name", light}, {"library", light}});
+      const nlohmann::ordered_json entry =
+          bare ? nlohmann::ordered_json(light) : nlohmann::ordered_json{{"name", light}, {"library", light}};
+      text = withElementAppended(text, {"lights"}, entry, file);
     }
     mix[light] = w;
   }
-  doc["light_mixes"][name] = mix;
-  writeTextAtomically(options_.scene, doc.dump(2) + "\n");
+  text = withMemberSet(text, {"light_mixes"}, name, mix, file);
+  writeTextAtomically(file, text);
+  scene_text_ = text;
 }
 
 }  // namespace svr

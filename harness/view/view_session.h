@@ -25,6 +25,7 @@
 #include "renderers/core/scene.h"
 #include "renderers/scene_model.h"
 #include "spectral/colorimetry.h"
+#include "spectral/error.h"
 #include "spectral/light_independent_image.h"
 #include "spectral/spectrum_library.h"
 #include "harness/view/page_data.h"
@@ -36,6 +37,12 @@ struct ViewOptions {
   std::vector<std::string> options;  // BACKEND.KEY=VALUE
   bool read_only = false;            // refuse to save mixes into the scene file
   std::uint64_t memory_budget = defaultMemoryBudget();  // voxels, and each frame with its work
+};
+
+// The scene file changed on disk since the session loaded it (or last saved a mix into it): a
+// mix is not saved over it (the server answers 409).
+struct SceneFileChanged : Error {
+  using Error::Error;
 };
 
 struct ViewRequest {
@@ -69,8 +76,10 @@ class ViewSession {
   // The frame, or empty when a newer request superseded this one. svr::Error when it fails.
   std::optional<ViewFrame> render(const ViewRequest& request);
   // Adds the mix {light name: weight} to the scene file as light_mixes[name], adding library
-  // lights the scene lacks to its lights. svr::Error for bad names or weights. The server
-  // refuses to call it when started --read-only (403).
+  // lights the scene lacks to its lights. Only those two entries of the file's text change
+  // (harness/view/json_text_edit.h); the write is atomic. svr::Error for bad names or weights;
+  // SceneFileChanged when the file is no longer the text the session knows. The server refuses
+  // to call it when started --read-only (403).
   void saveMix(const std::string& name, const std::vector<std::pair<std::string, double>>& weights);
 
   bool readOnly() const { return options_.read_only; }
@@ -83,6 +92,7 @@ class ViewSession {
   PageLightContext lightContext() const;
 
   ViewOptions options_;
+  std::string scene_text_;  // the scene file as loaded, then as last saved (under file_mutex_)
   WavelengthGrid grid_;
   SpectrumLibrary library_;
   Observer observer_;

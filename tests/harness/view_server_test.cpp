@@ -17,6 +17,8 @@
 #include "spectral/error.h"
 #include "harness/view/frame_format.h"
 
+#include <fmt/format.h>
+
 namespace svr {
 namespace {
 namespace fs = std::filesystem;
@@ -61,7 +63,8 @@ void expectPlanes(const std::string& planes, const LightIndependentImage& image,
 
 class ViewServerTest : public ::testing::Test {
  protected:
-  void start(bool read_only = false, std::uint64_t budget = 0, const std::string& host = "127.0.0.1") {
+  void start(bool read_only = false, std::uint64_t budget = 0, const std::string& host = "127.0.0.1",
+             const std::string& token = "") {
     dir_ = fs::temp_directory_path() / ("svr_view_test_" + std::to_string(::getpid()) + "_" +
                                         ::testing::UnitTest::GetInstance()->current_test_info()->name());
     ViewOptions o;
@@ -72,7 +75,7 @@ class ViewServerTest : public ::testing::Test {
     if (budget) o.memory_budget = budget;
     session_ = std::make_unique<ViewSession>(o);
     server_ = std::make_unique<ViewServer>(*session_);
-    port_ = server_->bind(host, 0);
+    port_ = server_->bind(host, 0, token);
     thread_ = std::thread([this] { server_->listen(); });
     host_ = host;
   }
@@ -309,6 +312,119 @@ TEST_F(ViewServerTest, ListensWhereHostSays) {
   httplib::Client loopback("127.0.0.1", port_);
   loopback.set_connection_timeout(2, 0);
   EXPECT_FALSE(loopback.Get("/api/scene"));
+}
+
+// The scene file's text, whole.
+std::string fileText(const fs::path& file) {
+  std::ifstream in(file, std::ios::binary);
+  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+
+bool hasCorsHeader(const httplib::Result& r) {
+  for (const auto& [key, value] : r->headers)
+    if (key.rfind("Access-Control-", 0) == 0) return true;
+  return false;
+}
+
+TEST_F(ViewServerTest, AnotherSitesHostOrOriginIsRefusedBeforeAnyWork) {
+  start();
+  auto c = client();
+  const std::string own = fmt::format("127.0.0.1:{}", port_), foreign = fmt::format("attacker.example:{}", port_);
+  const std::string scene_before = fileText(dir_ / "sphere.json");
+  // DNS rebinding: the attacker's name as Host.
+  for (const char* path : {"/api/scene", "/api/render?width=8&height=8", "/", "/api/light?name=D65"}) {
+    const auto r = c.Get(path, {{"Host", foreign}});
+    ASSERT_TRUE(r) << path;
+    EXPECT_EQ(r->status, 403) << path;
+    EXPECT_NE(r->body.find("Host 'attacker.example:" + std::to_string(port_) + "' is not this server"),
+              std::string::npos) << r->body;
+    EXPECT_FALSE(hasCorsHeader(r)) << path;
+  }
+  const std::string mix = R"({"weights": {"D65": 1}})";
+  const auto rebound = c.Post("/api/mixes?name=evil", {{"Host", foreign}}, mix, "application/json");
+  ASSERT_TRUE(rebound);
+  EXPECT_EQ(rebound->status, 403);
+  // A page of another site posting to the real address: its Origin gives it away.
+  for (const char* origin : {"http://attacker.example", "null"}) {
+    const auto r = c.Post("/api/mixes?name=evil", {{"Origin", origin}}, mix, "application/json");
+    ASSERT_TRUE(r);
+    EXPECT_EQ(r->status, 403) << origin;
+    EXPECT_NE(r->body.find("is not this server's page"), std::string::npos) << r->body;
+  }
+  const auto cors_get = c.Get("/api/scene", {{"Origin", "http://attacker.example"}});
+  EXPECT_EQ(cors_get->status, 403);
+  // A large body from a refused sender is not read: the answer is the refusal, not 413.
+  const auto big = c.Post("/api/mixes?name=evil", {{"Host", foreign}}, std::string(100000, ' '), "application/json");
+  EXPECT_EQ(big->status, 403);
+  EXPECT_EQ(fileText(dir_ / "sphere.json"), scene_before) << "a refused request wrote the scene file";
+  // The server's own names and Origin pass.
+  for (const std::string& host : {own, fmt::format("localhost:{}", port_), fmt::format("[::1]:{}", port_)})
+    EXPECT_EQ(c.Get("/api/scene", {{"Host", host}})->status, 200) << host;
+  const auto ok = c.Post("/api/mixes?name=mine", {{"Origin", "http://" + own}}, mix, "application/json");
+  EXPECT_EQ(ok->status, 200) << ok->body;
+  EXPECT_FALSE(hasCorsHeader(ok));
+  const auto options = c.Options("/api/mixes", {{"Origin", "http://attacker.example"}});
+  ASSERT_TRUE(options);
+  EXPECT_EQ(options->status, 403);
+  EXPECT_FALSE(hasCorsHeader(options));
+}
+
+TEST_F(ViewServerTest, WithATokenEveryRequestNeedsItAndThePageGetsACookie) {
+  const std::string token = "s3cret-token-for-this-test";
+  start(false, 0, "127.0.0.1", token);
+  auto c = client();
+  for (const char* path : {"/", "/api/scene", "/viewer.js", "/api/render?width=8&height=8"}) {
+    const auto r = c.Get(path);
+    ASSERT_TRUE(r);
+    EXPECT_EQ(r->status, 403) << path;
+    EXPECT_NE(r->body.find("needs its token"), std::string::npos) << r->body;
+  }
+  EXPECT_EQ(c.Get("/api/scene?token=wrong-token")->status, 403);
+  EXPECT_EQ(c.Post("/api/mixes?name=x", R"({"weights": {"D65": 1}})", "application/json")->status, 403);
+  // The page, opened with the token, hands the browser a cookie for this port only.
+  const auto page = c.Get(("/?token=" + token + "&relight=js").c_str());
+  ASSERT_EQ(page->status, 200) << page->body;
+  EXPECT_EQ(page->get_header_value("Set-Cookie"),
+            fmt::format("svr-token-{}={}; Path=/; HttpOnly; SameSite=Strict", port_, token));
+  const httplib::Headers cookie = {{"Cookie", fmt::format("svr-token-{}={}", port_, token)}};
+  EXPECT_EQ(c.Get("/api/scene", cookie)->status, 200);
+  EXPECT_EQ(c.Get("/api/render?width=8&height=8", cookie)->status, 200);
+  EXPECT_EQ(c.Get(("/api/scene?token=" + token).c_str())->status, 200);
+  EXPECT_FALSE(c.Get(("/api/scene?token=" + token).c_str())->has_header("Set-Cookie"));
+  EXPECT_EQ(c.Post("/api/mixes?name=x", cookie, R"({"weights": {"D65": 1}})", "application/json")->status, 200);
+  // Another port's cookie is not this server's.
+  EXPECT_EQ(c.Get("/api/scene", {{"Cookie", fmt::format("svr-token-{}={}", port_ + 1, token)}})->status, 403);
+}
+
+TEST_F(ViewServerTest, SavingAMixChangesOnlyItsEntriesOfTheSceneText) {
+  start();
+  const fs::path file = dir_ / "sphere.json";
+  const std::string before = fileText(file);
+  auto c = client();
+  const auto r = c.Post("/api/mixes?name=dusk", R"({"weights": {"D65": 0.25, "F11": 0.75}})", "application/json");
+  ASSERT_EQ(r->status, 200) << r->body;
+  std::string expected = before;
+  const std::string lights = R"({"name": "A", "library": "A"})";
+  expected.insert(expected.find(lights) + lights.size(), R"(, {"name": "F11", "library": "F11"})");
+  const std::string mixes = R"({"D65": 0.5, "A": 0.5})";
+  expected.insert(expected.find(mixes) + mixes.size(), R"(, "dusk": {"D65": 0.25, "F11": 0.75})");
+  EXPECT_EQ(fileText(file), expected);
+  // Saved again under the same name: replaced where it stands.
+  ASSERT_EQ(c.Post("/api/mixes?name=dusk", R"({"weights": {"A": 1}})", "application/json")->status, 200);
+  expected.replace(expected.find(R"({"D65": 0.25, "F11": 0.75})"), 26, R"({"A": 1.0})");
+  EXPECT_EQ(fileText(file), expected);
+  // The file changed by someone else: not overwritten, 409, the file as they left it.
+  const std::string theirs = expected + "\n";
+  std::ofstream(file, std::ios::binary) << theirs;
+  const auto conflict = c.Post("/api/mixes?name=late", R"({"weights": {"A": 1}})", "application/json");
+  ASSERT_TRUE(conflict);
+  EXPECT_EQ(conflict->status, 409);
+  EXPECT_NE(conflict->body.find("changed on disk since svr view loaded it"), std::string::npos) << conflict->body;
+  EXPECT_EQ(fileText(file), theirs);
+  fs::remove(file);
+  const auto gone = c.Post("/api/mixes?name=late", R"({"weights": {"A": 1}})", "application/json");
+  EXPECT_EQ(gone->status, 409);
+  EXPECT_FALSE(fs::exists(file));
 }
 
 TEST(ViewServerBind, AnAddressNotOfThisMachineIsAClearError) {
