@@ -187,7 +187,8 @@ void ViewServer::answerSaveMix(const httplib::Request& req, httplib::Response& r
     return;
   }
   if (!q.has("name")) throw BadRequest("parameter 'name' is missing");
-  const auto body = nlohmann::json::parse(req.body, nullptr, false);
+  // Ordered: the mix is written in the order the page lists its lights.
+  const auto body = nlohmann::ordered_json::parse(req.body, nullptr, false);
   if (body.is_discarded() || !body.is_object() || !body.contains("weights") ||
       !body["weights"].is_object())
     throw BadRequest("the body must be JSON {\"weights\": {\"LIGHT\": WEIGHT, …}}");
