@@ -14,6 +14,7 @@
 #include "harness/progress.h"
 #include "renderers/registry.h"
 #include "spectral/atomic_file.h"
+#include "spectral/data_dir.h"
 #include "spectral/error.h"
 #include "spectral/post_illumination.h"
 
@@ -56,7 +57,7 @@ nlohmann::json finiteOrNull(double v) { return std::isfinite(v) ? nlohmann::json
 void renderReportCharts(const std::string& out_dir) {
   // Debian's interpreter: it has python3-matplotlib (setup.sh installs it).
   const std::string python = fs::exists("/usr/bin/python3") ? "/usr/bin/python3" : "python3";
-  const std::string script = std::string(SVR_HARNESS_DIR) + "/report.py";
+  const std::string script = scriptDir() + "/report.py";
   const std::string command = fmt::format("'{}' '{}' '{}'", python, script, out_dir);
   if (std::system(command.c_str()) != 0)
     throw Error(fmt::format("{}: the chart script failed ({}); is python3-matplotlib installed "

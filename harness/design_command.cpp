@@ -15,12 +15,10 @@
 #include "spectral/atomic_file.h"
 #include "spectral/colorimetry.h"
 #include "spectral/design_solver.h"
+#include "spectral/data_dir.h"
 #include "spectral/error.h"
 #include "spectral/spectrum_library.h"
 
-#ifndef SVR_HARNESS_DIR
-#define SVR_HARNESS_DIR "harness"
-#endif
 
 namespace svr {
 namespace fs = std::filesystem;
@@ -137,7 +135,7 @@ int runDesign(const DesignCommandOptions& o) {
   writeSwatches(palette, r, observer, (out / "palette.png").string());
   if (o.plots) {
     const std::string cmd = fmt::format(
-        "/usr/bin/python3 '{}/plot_spectra.py' '{}' '{}' {} 2>&1", SVR_HARNESS_DIR,
+        "/usr/bin/python3 '{}/plot_spectra.py' '{}' '{}' {} 2>&1", scriptDir(),
         (out / "spectra.csv").string(), (out / "spectra.png").string(), r.lights.size());
     if (std::system(cmd.c_str()) != 0)
       fmt::print(stderr, "design: warning: spectra.png not written (needs python3-matplotlib)\n");

@@ -5,6 +5,7 @@
 
 #include <exception>
 
+#include "harness/build_info.h"
 #include "harness/command.h"
 #include "harness/interrupt.h"
 #include "spectral/data_dir.h"
@@ -16,6 +17,8 @@ int main(int argc, char** argv) {
   svr::CommandContext context{svr::defaultDataDir()};
   app.add_option("--data", context.data_dir, "data directory (spectra/, volumes/, scenes/)")
       ->capture_default_str();
+  app.set_version_flag("--version", [&] { return svr::buildDescription(context.data_dir); },
+                       "the version and what this build holds");
   for (const auto& command : svr::commandEntries())
     command.define(*app.add_subcommand(command.name, command.help), context);
   try {
