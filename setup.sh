@@ -18,6 +18,7 @@ PACKAGES=(
   libvolpack1-dev  # bench/peers: VolPack, the shear-warp peer (small, static)
   libcpp-httplib-dev chromium  # svr view: its HTTP server; its page's tests in a real browser
   libopenmpi-dev openmpi-bin  # svr-mpi: brick-distributed rendering (docs/distributed.md)
+  dpkg-dev  # cpack -G DEB's dpkg-shlibdeps (tests/install, docs/api.md)
 )
 case "${1:-}" in
   "") ;;
