@@ -19,6 +19,7 @@ PACKAGES=(
   libcpp-httplib-dev chromium  # svr view: its HTTP server; its page's tests in a real browser
   libopenmpi-dev openmpi-bin  # svr-mpi: brick-distributed rendering (docs/distributed.md)
   dpkg-dev  # cpack -G DEB's dpkg-shlibdeps (tests/install, docs/api.md)
+  universal-ctags  # tests/code_rules.py: every function's length
 )
 case "${1:-}" in
   "") ;;

@@ -100,14 +100,18 @@ void printSmallestK(const std::string& set, const std::vector<ModelErrorRow>& ro
 
 }  // namespace
 
-int runModelError(const ModelErrorOptions& o) {
-  if (o.k_min < 3 || o.k_max > 16 || o.k_min > o.k_max)
-    throw Error(fmt::format("model-error: --k range {}..{} must lie within 3..16", o.k_min, o.k_max));
-  const WavelengthGrid grid = WavelengthGrid::standard();
-  const auto library = SpectrumLibrary::load(o.data_dir, grid);
-  const auto observer = Observer::cie1931(o.data_dir, grid);
-  const auto light_names = o.lights.empty() ? standardLightNames() : o.lights;
+namespace {
 
+// What the models are trained on and evaluated against: a palette's lights × materials (with
+// its absorbers), or the standard Munsell split under the named lights, or those lights over
+// the reflectances asked for.
+struct ModelErrorSets {
+  TrainingSet training;
+  std::vector<EvaluationSet> evaluation;
+};
+
+ModelErrorSets modelErrorSets(const ModelErrorOptions& o, const SpectrumLibrary& library,
+                              const Observer& observer, const std::vector<std::string>& light_names) {
   TrainingSet training;
   std::vector<EvaluationSet> sets;
   if (!o.palette.empty()) {
@@ -136,6 +140,44 @@ int runModelError(const ModelErrorOptions& o) {
       sets.push_back(makeEvaluationSet("reflectances", training.lights, refl, 1));
     }
   }
+  return {std::move(training), std::move(sets)};
+}
+
+// report.json of the run: every row's statistics, each model's training figures, the lights.
+void writeModelErrorJson(const std::string& path, const std::vector<ModelErrorRow>& rows,
+                         const std::vector<ModelEntry>& models,
+                         const std::vector<std::string>& light_names) {
+  nlohmann::json out;
+  out["rows"] = nlohmann::json::array();
+  for (const auto& r : rows) out["rows"].push_back(statsJson(r));
+  nlohmann::json training_info = nlohmann::json::array();
+  for (const auto& m : models)
+    training_info.push_back({{"model", m.model->name()},
+                             {"variant", m.model->variant()},
+                             {"train_seconds", m.train_seconds},
+                             {"start", m.training.start},
+                             {"objective_start", std::isfinite(m.training.objective_start)
+                                                     ? nlohmann::json(m.training.objective_start)
+                                                     : nlohmann::json()},
+                             {"objective_final", m.training.objective_final},
+                             {"iterations", m.training.iterations}});
+  out["training"] = training_info;
+  out["lights"] = light_names;
+  writeTextAtomically(path, out.dump(1) + "\n");
+  fmt::print("wrote {}\n", path);
+}
+
+}  // namespace
+
+int runModelError(const ModelErrorOptions& o) {
+  if (o.k_min < 3 || o.k_max > 16 || o.k_min > o.k_max)
+    throw Error(fmt::format("model-error: --k range {}..{} must lie within 3..16", o.k_min, o.k_max));
+  const WavelengthGrid grid = WavelengthGrid::standard();
+  const auto library = SpectrumLibrary::load(o.data_dir, grid);
+  const auto observer = Observer::cie1931(o.data_dir, grid);
+  const auto light_names = o.lights.empty() ? standardLightNames() : o.lights;
+
+  auto [training, sets] = modelErrorSets(o, library, observer, light_names);
 
   std::vector<ModelEntry> models;
   const int nk = o.k_max - o.k_min + 1;
@@ -201,26 +243,7 @@ int runModelError(const ModelErrorOptions& o) {
                  m.training.start, m.training.objective_start, m.training.objective_final,
                  m.training.iterations, m.train_seconds, m.training.white_min_abs);
 
-  if (!o.json_path.empty()) {
-    nlohmann::json out;
-    out["rows"] = nlohmann::json::array();
-    for (const auto& r : rows) out["rows"].push_back(statsJson(r));
-    nlohmann::json training_info = nlohmann::json::array();
-    for (const auto& m : models)
-      training_info.push_back({{"model", m.model->name()},
-                               {"variant", m.model->variant()},
-                               {"train_seconds", m.train_seconds},
-                               {"start", m.training.start},
-                               {"objective_start", std::isfinite(m.training.objective_start)
-                                                       ? nlohmann::json(m.training.objective_start)
-                                                       : nlohmann::json()},
-                               {"objective_final", m.training.objective_final},
-                               {"iterations", m.training.iterations}});
-    out["training"] = training_info;
-    out["lights"] = light_names;
-    writeTextAtomically(o.json_path, out.dump(1) + "\n");
-    fmt::print("wrote {}\n", o.json_path);
-  }
+  if (!o.json_path.empty()) writeModelErrorJson(o.json_path, rows, models, light_names);
   return 0;
 }
 

@@ -283,31 +283,18 @@ std::string splitIntoBricks(const RenderOptions& o, const WavelengthGrid& grid,
   return failure;
 }
 
-int runRender(const RenderOptions& o) {
-  using clock = std::chrono::steady_clock;
-  RenderDistribution* const dist = o.distribution;
-  const bool writer = !dist || dist->writes();
-  const bool quiet = o.quiet || !writer;
-  Timings t;
-  const auto t_load = clock::now();
-  const WavelengthGrid grid = WavelengthGrid::standard();
-  VolumeLoadOptions volume_options;
-  if (o.memory_budget) volume_options.memory_budget = *o.memory_budget;
-  std::string estimate_failure;
-  if (dist) estimate_failure = splitIntoBricks(o, grid, volume_options);
-  std::optional<Loaded> loaded;
-  phase(dist, [&] { loaded.emplace(loadForRender(o, grid, volume_options)); });
-  Scene& scene = loaded->scene;
-  const Observer& observer = loaded->observer;
-  const Renderer* const renderer = loaded->renderer.get();
-  if (dist) {  // the classification's bins span the whole volume's values, on every brick
-    VolumeBrick brick = *scene.volume.brick();
-    brick.whole_range = dist->wholeRange(scene.volume.localRange());
-    scene.volume.setBrick(brick);
-  }
-  t.load = msSince(t_load);
+namespace {
 
-  const auto t_classify = clock::now();
+// The model (in a distributed render, auto's choice agreed across the bricks) and the
+// classification, with the memory of every image checked before any is allocated.
+struct ModelAndClassification {
+  SceneModel model;
+  ClassifiedVolume classified;
+};
+
+ModelAndClassification chooseModelAndClassify(const RenderOptions& o, RenderDistribution* dist,
+                                              const Scene& scene, const Observer& observer,
+                                              std::uint64_t memory_budget) {
   std::optional<SceneModel> chosen_model;
   ClassifiedVolume classified;
   phase(dist, [&] {
@@ -338,7 +325,7 @@ int runRender(const RenderOptions& o) {
     checkMemoryBudget(LightIndependentImage::bytesFor(scene.width, scene.height, classified.k,
                                                       classified.t_channels) +
                           3 * relit_count * std::uint64_t(scene.width) * scene.height,
-                      volume_options.memory_budget,
+                      memory_budget,
                       fmt::format("{}: a {}×{} image of {} + {} channels and {} relit images",
                                   o.scene, scene.width, scene.height, classified.k,
                                   classified.t_channels, relit_count));
@@ -346,7 +333,38 @@ int runRender(const RenderOptions& o) {
   if (dist)  // and its gradients quantise as the whole volume's would
     classified.brick->whole_field =
         dist->wholeField(fieldRangeOver(classified, ownInStored(*classified.brick)));
-  const SceneModel& chosen = *chosen_model;
+  return {std::move(*chosen_model), std::move(classified)};
+}
+
+}  // namespace
+
+int runRender(const RenderOptions& o) {
+  using clock = std::chrono::steady_clock;
+  RenderDistribution* const dist = o.distribution;
+  const bool writer = !dist || dist->writes();
+  const bool quiet = o.quiet || !writer;
+  Timings t;
+  const auto t_load = clock::now();
+  const WavelengthGrid grid = WavelengthGrid::standard();
+  VolumeLoadOptions volume_options;
+  if (o.memory_budget) volume_options.memory_budget = *o.memory_budget;
+  std::string estimate_failure;
+  if (dist) estimate_failure = splitIntoBricks(o, grid, volume_options);
+  std::optional<Loaded> loaded;
+  phase(dist, [&] { loaded.emplace(loadForRender(o, grid, volume_options)); });
+  Scene& scene = loaded->scene;
+  const Observer& observer = loaded->observer;
+  const Renderer* const renderer = loaded->renderer.get();
+  if (dist) {  // the classification's bins span the whole volume's values, on every brick
+    VolumeBrick brick = *scene.volume.brick();
+    brick.whole_range = dist->wholeRange(scene.volume.localRange());
+    scene.volume.setBrick(brick);
+  }
+  t.load = msSince(t_load);
+
+  const auto t_classify = clock::now();
+  auto [chosen, classified] =
+      chooseModelAndClassify(o, dist, scene, observer, volume_options.memory_budget);
   t.classify = msSince(t_classify);
 
   const auto t_render = clock::now();

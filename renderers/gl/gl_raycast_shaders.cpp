@@ -4,13 +4,10 @@
 
 namespace svr::gl {
 
-std::string raycastFragmentShader(const RaycastShaderKey& key) {
-  return fmt::format(
-             "#version 450 core\n#define K {}\n#define KT {}\n#define LABELS {}\n"
-             "#define PRECOMPUTED {}\n#define FIRST {}\n#define NOUT {}\n",
-             key.k, key.kt, key.labels ? 1 : 0, key.precomputed_gradients ? 1 : 0,
-             key.first_layer, key.layers) +
-         R"(
+namespace {
+
+// The uniforms, the per-ray state and the helpers: sampling, classification, blocks, shading.
+constexpr const char* kRaycastDeclarations = R"(
 #define SL ((K + 3) / 4)   // vec4s of S (and of a table row's α·ρ)
 #define TL ((KT + 3) / 4)  // vec4s of T (and of a row's transmission)
 #define ROW (1 + SL + TL)  // texels of a table row: (α, α·s, 0, 0), α·ρ, t (zero-padded)
@@ -96,7 +93,10 @@ void blendRow(vec3 p, float v) {
 #endif
 }
 
-void main() {
+)";
+
+// One ray per fragment: march the lattice, composite S and T, write the asked layers.
+constexpr const char* kRaycastMain = R"(void main() {
   for (int i = 0; i < SL; ++i) S[i] = vec4(0.0);
   for (int i = 0; i < TL; ++i) T[i] = vec4(lessThan(ivec4(4 * i) + ivec4(0, 1, 2, 3), ivec4(KT)));
   vec4 white[SL];
@@ -186,6 +186,16 @@ void main() {
   for (int j = 0; j < NOUT; ++j) o_layers[j] = FIRST + j < SL ? S[FIRST + j] : T[FIRST + j - SL];
 }
 )";
+
+}  // namespace
+
+std::string raycastFragmentShader(const RaycastShaderKey& key) {
+  return fmt::format(
+             "#version 450 core\n#define K {}\n#define KT {}\n#define LABELS {}\n"
+             "#define PRECOMPUTED {}\n#define FIRST {}\n#define NOUT {}\n",
+             key.k, key.kt, key.labels ? 1 : 0, key.precomputed_gradients ? 1 : 0,
+             key.first_layer, key.layers) +
+         kRaycastDeclarations + kRaycastMain;
 }
 
 }  // namespace svr::gl

@@ -300,6 +300,23 @@ struct BrickClip {
   }
 };
 
+// The transmittance in front of a brick at pixel (x, y), channel by channel into front[0, kt),
+// and its largest channel: a brick's rays stop where the whole render's do. 1 without a front.
+SVR_RAYCAST_INLINE float frontTransmittance(const TileJob& job, int x, int y, int kt, float* front) {
+  if (!job.front) {
+    for (int c = 0; c < kt; ++c) front[c] = 1.f;
+    return 1.f;
+  }
+  constexpr int n = FrontTransmittance::kBlock;
+  const std::size_t at = static_cast<std::size_t>(y - job.front_y0) * n + (x - job.front_x0);
+  float front_max = 0.f;
+  for (int c = 0; c < kt; ++c) {
+    front[c] = job.front[c * n * n + at];
+    front_max = std::max(front_max, front[c]);
+  }
+  return front_max;
+}
+
 template <int K, bool kSpectralT, bool kPrecomputedGradients>
 SVR_RAYCAST_TARGET void traceTile(const TileJob& job) {
   const ClassifiedVolume& cv = *job.volume;
@@ -336,20 +353,8 @@ SVR_RAYCAST_TARGET void traceTile(const TileJob& job) {
       float S[kCap], T[kSpectralT ? kCap : 1];
       for (int c = 0; c < k; ++c) S[c] = 0.f;
       for (int c = 0; c < kt; ++c) T[c] = 1.f;
-      // The transmittance in front of a brick: its rays stop where the whole render's do.
       float front[kSpectralT ? kCap : 1];
-      float front_max = 1.f;
-      if (job.front) {
-        constexpr int n = FrontTransmittance::kBlock;
-        const std::size_t at = static_cast<std::size_t>(y - job.front_y0) * n + (x - job.front_x0);
-        front_max = 0.f;
-        for (int c = 0; c < kt; ++c) {
-          front[c] = job.front[c * n * n + at];
-          front_max = std::max(front_max, front[c]);
-        }
-      } else {
-        for (int c = 0; c < kt; ++c) front[c] = 1.f;
-      }
+      const float front_max = frontTransmittance(job, x, y, kt, front);
 
       const Ray ray = job.rays->ray(x + 0.5, y + 0.5);
       const glm::dvec3 o = ray.origin * inv_spacing + centre;
