@@ -48,12 +48,6 @@ std::string toString(FactorVariant v) {
   return "?";
 }
 
-FactorVariant parseFactorVariant(const std::string& text) {
-  for (auto v : {FactorVariant::kPca, FactorVariant::kSharp, FactorVariant::kRefined})
-    if (toString(v) == text) return v;
-  throw Error(fmt::format("unknown factor variant '{}'; expected pca, sharp or refined", text));
-}
-
 namespace {
 
 void checkSet(const TrainingSet& set) {

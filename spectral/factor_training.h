@@ -38,7 +38,6 @@ enum class FactorVariant {
   kRefined,  // the product model: border search + Levenberg–Marquardt on single and deep products
 };
 std::string toString(FactorVariant v);
-FactorVariant parseFactorVariant(const std::string& text);
 
 struct FactorTrainingReport {
   std::string start;             // starting sharpening the refinement began from

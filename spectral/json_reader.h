@@ -28,7 +28,6 @@ class JsonReader {
   bool isObject() const { return value_.is_object(); }
   bool isArray() const { return value_.is_array(); }
   bool isString() const { return value_.is_string(); }
-  bool isNumber() const { return value_.is_number(); }
   bool contains(const std::string& key) const;
 
   // Child readers; marking the key as used.

@@ -2,10 +2,10 @@
 // Memory for many arrays that are filled once and freed together (shear-warp's voxel records:
 // tens of MiB a principal axis, in a few hundred slices; the encoder's gathered slices), taken
 // from large blocks. The blocks are ordinary 4 KiB pages, not huge ones (huge_pages.h): they are
-// written once, in order, where a huge page saves little, and in this VM the first touch of
-// fresh huge pages is slow and erratic (2 MiB blocks the guest had freed are handed back to the
-// host, which must supply them again): with the records on huge pages, 4 of 12 first frames of
-// the frog took over 3× a steady frame, against 1 of 12 on 4 KiB pages, steady frames unchanged.
+// written once, in order, where a huge page saves little, and under virtualisation the first
+// touch of fresh huge pages can be slow and erratic (the host must supply 2 MiB blocks the guest
+// had freed). docs/performance.md has the measurement: the frog's first frames against steady
+// ones, with the records on huge pages and on 4 KiB pages.
 
 #include <cstddef>
 #include <memory>

@@ -1,11 +1,11 @@
 #pragma once
-// Memory that the kernel is asked to back with transparent huge pages (this machine's mode is
+// Memory that the kernel is asked to back with transparent huge pages (Linux's usual mode is
 // madvise: only memory advised so gets them), for arrays read across their rows: a walk that
 // crosses a row of a large image at every step (shear-warp's warp under rotation) touches a new
-// 4 KiB page at most steps, and each TLB miss is a nested page walk here; with 2 MiB pages the
-// whole image takes a few TLB entries (the intermediate image on 4 KiB pages cost 9–17 % of
-// rgb 800² frames at azimuths −60°, 44°, 46°). Not for memory written once and read in order
-// (block_arena.h): the first touch of fresh huge pages in this VM is slow and erratic.
+// 4 KiB page at most steps, and each TLB miss costs a page walk (a nested one under
+// virtualisation); with 2 MiB pages the whole image takes a few TLB entries (docs/performance.md
+// gives what 4 KiB pages cost the warp). Not for memory written once and read in order
+// (block_arena.h): the first touch of fresh huge pages can be slow and erratic.
 // Requests under one huge page come from malloc as usual.
 
 #include <cstddef>

@@ -8,7 +8,7 @@
 // interpolated colour — and is shaded from a per-view table over the normal indices
 // (ShadingTable), as VolPack's vpShadeTable. The slice spacing correction, α' = 1 − (1 − α)^r
 // and t' = t^r with r = slice spacing / Δs, is applied to the interpolated α and t through
-// per-view tables (PowerTable). The records share the runs and row spans of the post-classified
+// per-view tables (PowerTable). The records share the runs and row segments of the post-classified
 // encoding (its occupancy criterion covers every voxel with α > 0), indexed alike.
 //
 // What it costs in accuracy is charted by svr compare's variant row (svr demo runs it).

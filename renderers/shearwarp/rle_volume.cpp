@@ -44,8 +44,9 @@ struct SliceRows {
 // along y, a volume row apart: read in place, every voxel would be a cache line of its own, read
 // once per slice that holds it; gathered for the group at once, each line is read once.
 //
-// The gathered planes come from a huge-page arena, taken once per thread and encoding: a
-// 64-slice group of a 256³ volume is 17 MiB, thousands of 4 KiB page faults otherwise.
+// The gathered planes come from a block arena (core/block_arena.h) kept per thread for the
+// whole encoding: a 64-slice group of a 256³ volume is 17 MiB, allocated and faulted in once,
+// not again for every group.
 template <class T>
 struct GatherBuffer {
   BlockArena arena;

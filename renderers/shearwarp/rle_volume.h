@@ -11,7 +11,7 @@
 // transparent). The encoding stores, per cell row, the runs of non-transparent cells (the
 // transparent runs are the gaps between them and are never visited), and per voxel row the
 // voxel records (bin coordinate or label, and the precomputed world-space gradient of the shading field)
-// of the span of voxels that non-transparent cells touch. Transparent space costs nothing.
+// of the segments of voxels that non-transparent cells touch. Transparent space costs nothing.
 
 #include <array>
 #include <cstdint>
