@@ -59,7 +59,7 @@ class JsonScanner {
   // The members of the object, or elements of the array, whose value is `container`.
   std::vector<Item> items(Span container) const {
     std::vector<Item> out;
-    const bool object = t_[container.begin] == '{';
+    const bool object = isObject(container);
     size_t at = skipSpace(container.begin + 1);
     while (at < container.end - 1) {
       Item item;

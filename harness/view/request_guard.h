@@ -46,7 +46,6 @@ class RequestGuard {
   std::string cookieName() const;
   // The Set-Cookie value for an allowed query token.
   std::string setCookieValue() const;
-  const std::string& token() const { return token_; }
   // Host values that count as this server (lower case, with the port), for messages and tests.
   const std::vector<std::string>& allowedHosts() const { return allowed_; }
 

@@ -127,9 +127,9 @@ bool ViewServer::refused(const httplib::Request& req, httplib::Response& res) co
   credentials.host = header("Host");
   credentials.origin = header("Origin");
   credentials.cookie = header("Cookie");
-  const size_t tokens = req.params.count("token");
-  if (tokens > 1) credentials.repeated.push_back("token");
-  if (tokens) credentials.token = req.params.find("token")->second;
+  const size_t tokens = req.params.count(kTokenParameter);
+  if (tokens > 1) credentials.repeated.push_back(kTokenParameter);
+  if (tokens) credentials.token = req.params.find(kTokenParameter)->second;
   const GuardVerdict verdict = guard_->check(credentials);
   if (verdict.status) {
     answer(res, verdict.status, verdict.message);

@@ -12,6 +12,7 @@
 #include "renderers/registry.h"
 #include "spectral/atomic_file.h"
 #include "spectral/error.h"
+#include "spectral/json_reader.h"
 #include "spectral/text_file.h"
 #include "harness/view/json_text_edit.h"
 
@@ -19,11 +20,13 @@ namespace svr {
 
 ViewSession::ViewSession(const ViewOptions& options)
     : options_(options),
-      scene_text_(readTextFile(options.scene, "scene file")),
+      // Read once: the scene is parsed from the very text a saved mix is later checked against.
+      scene_text_(readTextFile(options.scene, "JSON file")),
       grid_(WavelengthGrid::standard()),
       library_(SpectrumLibrary::load(options.data_dir, grid_)),
       observer_(Observer::cie1931(options.data_dir, grid_)),
-      scene_(loadScene(options.scene, library_, VolumeLoadOptions{.memory_budget = options.memory_budget})) {
+      scene_(parseScene(JsonReader::parse(scene_text_, options.scene), options.scene, library_,
+                        VolumeLoadOptions{.memory_budget = options.memory_budget})) {
   renderer_ = makeRenderer(options.renderer);
   checkRendererOptions(scene_.renderer_options, options.scene + ": render.options");
   for (const auto& option : options.options)
@@ -111,9 +114,10 @@ void ViewSession::saveMix(const std::string& name,
     throw SceneFileChanged(fmt::format("{} changed on disk since svr view loaded it: the mix is not "
                                        "saved over it (restart svr view to load the new file)", file));
   const nlohmann::ordered_json doc = nlohmann::ordered_json::parse(text, nullptr, false);
-  if (doc.is_discarded() || !doc.is_object() || !doc.value("lights", nlohmann::ordered_json::array()).is_array())
+  const nlohmann::ordered_json lights =
+      doc.is_object() ? doc.value("lights", nlohmann::ordered_json::array()) : nlohmann::ordered_json();
+  if (!lights.is_array())
     throw Error(fmt::format("{}: cannot read the scene file back to add the mix", file));
-  const nlohmann::ordered_json lights = doc.value("lights", nlohmann::ordered_json::array());
   // A light is named by its "name", or, written as a bare string, by the library name it is.
   const auto listed = [&](const std::string& light) {
     return std::any_of(lights.begin(), lights.end(), [&](const auto& l) {
