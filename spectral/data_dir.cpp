@@ -1,6 +1,7 @@
 #include "spectral/data_dir.h"
 
 #include <dlfcn.h>
+#include <link.h>
 
 #include <cstdlib>
 #include <filesystem>
@@ -12,13 +13,17 @@ namespace fs = std::filesystem;
 namespace {
 
 // The file that holds this function's code: libsvr.so when it is linked from one, else the
-// executable (whose dladdr name is empty; /proc/self/exe names it).
+// executable. The object's own link map says which: the executable's name there is empty
+// (dladdr's dli_fname would give argv[0] instead, which a bare `svr` from PATH resolves against
+// the working folder), a shared library's is the path it was loaded from.
 fs::path codeFile() {
-  Dl_info info{};
   static const int anchor = 0;
-  if (::dladdr(&anchor, &info) != 0 && info.dli_fname && *info.dli_fname) {
+  Dl_info info{};
+  link_map* map = nullptr;
+  if (::dladdr1(&anchor, &info, reinterpret_cast<void**>(&map), RTLD_DL_LINKMAP) != 0 && map &&
+      map->l_name && *map->l_name) {
     std::error_code ec;
-    const fs::path p = fs::canonical(info.dli_fname, ec);
+    const fs::path p = fs::canonical(map->l_name, ec);
     if (!ec) return p;
   }
   std::error_code ec;

@@ -44,6 +44,10 @@ without_source() {
 say "the installed svr, its source hidden"
 without_source "$prefix/bin/svr" --version | tee "$work/version.txt"
 grep -q "^data: $prefix/share/svr$" "$work/version.txt" || { echo "svr --version names no installed data folder"; exit 1; }
+# Found through PATH, from a folder that holds something named svr: the installed data still.
+mkdir -p "$work/elsewhere/svr"
+(cd "$work/elsewhere" && PATH="$prefix/bin:$PATH" without_source svr --version) | grep -q "^data: $prefix/share/svr$" \
+  || { echo "svr from PATH, run beside a folder named svr, does not find its installed data"; exit 1; }
 without_source "$prefix/bin/svr" demo --quick --out "$work/demo" > "$work/demo.log" 2>&1 || { tail -30 "$work/demo.log"; exit 1; }
 test -s "$work/demo/report.html"
 scene=$prefix/share/svr/scenes/engine.json
