@@ -40,7 +40,8 @@ def main() -> int:
 
 
 def start(svr: str, scene: str, *extra: str):
-    """svr view on any free port; the process, its first line's URL match and stderr so far."""
+    """svr view on any free port: the process, the match of the loopback URL (and its token) in
+    its first line, and that line."""
     proc = subprocess.Popen([svr, "view", scene, "--port", "0", *extra], stdout=subprocess.PIPE,
                             stderr=subprocess.PIPE, text=True)
     line = proc.stdout.readline()
@@ -118,10 +119,7 @@ def run(svr: str, scene: str) -> int:
     if bad.returncode != 2 or "--port 70000 is outside 0..65535" not in bad.stderr:
         problems.append(f"--port 70000: exit {bad.returncode}, stderr {bad.stderr!r}")
 
-    proc = subprocess.Popen([svr, "view", scene, "--port", "0"], stdout=subprocess.PIPE,
-                            stderr=subprocess.PIPE, text=True)
-    line = proc.stdout.readline()
-    match = re.search(r"http://127\.0\.0\.1:(\d+)/", line)
+    proc, match, line = start(svr, scene)
     if not match:
         proc.kill()
         print(f"FAIL: no loopback URL in {line!r}; stderr {proc.stderr.read()!r}")
