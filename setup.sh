@@ -20,6 +20,7 @@ PACKAGES=(
   libopenmpi-dev openmpi-bin  # svr-mpi: brick-distributed rendering (docs/distributed.md)
   dpkg-dev  # cpack -G DEB's dpkg-shlibdeps (tests/install, docs/api.md)
   universal-ctags  # tests/code_rules.py: every function's length
+  pybind11-dev python3-dev python3-pytest python3-pil  # `import svr` (python/, docs/python.md) and its tests
 )
 case "${1:-}" in
   "") ;;

@@ -160,7 +160,10 @@ nlohmann::json runReport(const RunResult& run, const Scene& scene,
 
 CompareSummary runComparison(const CompareOptions& o) {
   const auto library = SpectrumLibrary::load(o.data_dir, WavelengthGrid::standard());
-  Scene scene = loadScene(o.scene, library);
+  return runComparison(loadScene(o.scene, library), o);
+}
+
+CompareSummary runComparison(Scene scene, const CompareOptions& o) {
   if (o.width > 0) scene.width = o.width;
   if (o.height > 0) scene.height = o.height;
   const std::vector<std::string> renderers = o.renderers.empty() ? rendererNames() : o.renderers;

@@ -33,6 +33,8 @@ struct CompareSummary {
 // Runs every comparison and writes report.json and the images into out_dir (charts and HTML
 // too when options.charts). Throws svr::Error for bad input; tolerance misses are returned.
 CompareSummary runComparison(const CompareOptions& options);
+// The same for a scene already loaded (the Python module's); options.scene names it.
+CompareSummary runComparison(Scene scene, const CompareOptions& options);
 // The command: runComparison, a table on stdout, one line per exceedance; 0, or 1 on a miss.
 int runCompare(const CompareOptions& options);
 // Prints the summary table (backend × model: ms/frame, relight fps, mean ΔE2000, pass).

@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include <OpenImageIO/filesystem.h>
 #include <OpenImageIO/imageio.h>
 
 #include <algorithm>
@@ -231,6 +232,22 @@ void writeSrgbPng(const std::vector<std::uint8_t>& rgb, int width, int height,
         !out->close())
       throw Error(fmt::format("{}: cannot write PNG: {}", path, out->geterror()));
   });
+}
+
+std::vector<std::uint8_t> encodeSrgbPng(std::span<const std::uint8_t> rgb, int width,
+                                        int height) {
+  if (width <= 0 || height <= 0 || rgb.size() != static_cast<std::size_t>(width) * height * 3)
+    throw Error(fmt::format("PNG: {} bytes for a {}×{} RGB image", rgb.size(), width, height));
+  OIIO::ImageSpec spec(width, height, 3, OIIO::TypeDesc::UINT8);
+  spec.attribute("oiio:ColorSpace", "sRGB");
+  OIIO::Filesystem::IOVecOutput memory;
+  auto out = OIIO::ImageOutput::create("png");
+  if (!out) throw Error("PNG: OpenImageIO has no PNG writer");
+  out->set_ioproxy(&memory);
+  if (!out->open("memory.png", spec) || !out->write_image(OIIO::TypeDesc::UINT8, rgb.data()) ||
+      !out->close())
+    throw Error(fmt::format("PNG: cannot encode: {}", out->geterror()));
+  return {memory.buffer().begin(), memory.buffer().end()};
 }
 
 }  // namespace svr

@@ -6,6 +6,7 @@
 
 #include <cstdint>
 #include <map>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -22,5 +23,7 @@ LightIndependentImage readLightIndependentExr(const std::string& path,
 
 void writeSrgbPng(const std::vector<std::uint8_t>& rgb, int width, int height,
                   const std::string& path);
+// The same PNG as bytes in memory (the Python module's Image._repr_png_ for Jupyter).
+std::vector<std::uint8_t> encodeSrgbPng(std::span<const std::uint8_t> rgb, int width, int height);
 
 }  // namespace svr

@@ -108,4 +108,17 @@ SpectrumKind SpectrumLibrary::kind(const std::string& name) const {
   return entries_.at(name).kind;
 }
 
+std::vector<std::string> SpectrumLibrary::names() const {
+  std::vector<std::string> out;
+  for (const auto& [name, entry] : entries_) out.push_back(name);
+  return out;
+}
+
+std::vector<std::string> SpectrumLibrary::names(SpectrumKind kind) const {
+  std::vector<std::string> out;
+  for (const auto& [name, entry] : entries_)
+    if (entry.kind == kind) out.push_back(name);
+  return out;
+}
+
 }  // namespace svr

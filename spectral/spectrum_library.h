@@ -37,6 +37,9 @@ class SpectrumLibrary {
   const std::vector<std::string>& lightNames() const { return light_names_; }
   const std::vector<std::string>& colorCheckerNames() const { return colorchecker_names_; }
   const std::vector<std::string>& munsellNames() const { return munsell_names_; }
+  // Every name, or those of one kind, sorted.
+  std::vector<std::string> names() const;
+  std::vector<std::string> names(SpectrumKind kind) const;
 
  private:
   struct Entry {

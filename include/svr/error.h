@@ -13,4 +13,10 @@ class Error : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
+// A render stopped on request before it finished (the Python module's Ctrl-C): no image.
+class Cancelled : public Error {
+ public:
+  using Error::Error;
+};
+
 }  // namespace svr

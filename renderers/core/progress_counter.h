@@ -1,7 +1,10 @@
 #pragma once
 // Progress of one render, shared by the threads of a parallel loop: any thread may count work
 // done, and only the thread that made the counter reports, so a ProgressFn is always called
-// from one thread, with a fraction that never decreases.
+// from one thread, with a fraction that never decreases. It also carries the render's stop
+// request (RenderRequest::stop): a backend's parallel loops skip their remaining work units once
+// stopped() — an exception cannot leave an OpenMP loop — and Renderer::render then throws
+// svr::Cancelled.
 
 #include <atomic>
 #include <functional>
@@ -14,8 +17,11 @@ using ProgressFn = std::function<void(double)>;
 
 class ProgressCounter {
  public:
-  explicit ProgressCounter(ProgressFn report)
-      : report_(std::move(report)), owner_(std::this_thread::get_id()) {}
+  explicit ProgressCounter(ProgressFn report, const std::atomic<bool>* stop = nullptr)
+      : report_(std::move(report)), owner_(std::this_thread::get_id()), stop_(stop) {}
+
+  // Whether the render was asked to stop (any thread).
+  bool stopped() const { return stop_ && stop_->load(std::memory_order_relaxed); }
 
   // Starts counting `units` of work that together take the fraction [from, to].
   void stage(long units, double from = 0.0, double to = 1.0) {
@@ -39,6 +45,7 @@ class ProgressCounter {
  private:
   ProgressFn report_;
   std::thread::id owner_;
+  const std::atomic<bool>* stop_;
   std::atomic<long> done_{0};
   long units_ = 1;
   double from_ = 0.0, to_ = 1.0, shown_ = 0.0;

@@ -66,8 +66,9 @@ LightIndependentImage Renderer::render(const RenderRequest& request,
       fmt::format("{}: a {}×{} image of {} + {} channels{}", backend.name, request.width,
                   request.height, cv.k, cv.t_channels,
                   working > 0 ? " and its working memory" : ""));
-  ProgressCounter counter(progress);
+  ProgressCounter counter(progress, request.stop);
   LightIndependentImage image = renderImpl(request, options, counter);
+  if (counter.stopped()) throw Cancelled(fmt::format("{}: the render was stopped", backend.name));
   counter.set(1.0);
   requireFinite(image, request);  // numeric failure is reported, never written out
   return image;

@@ -9,6 +9,7 @@
 // which names backend, channel and pixel. A backend writes renderImpl, and may take over the
 // finite check (requireFinite) where its last pass checks every sample as it writes it.
 
+#include <atomic>
 #include <functional>
 #include <memory>
 #include <optional>
@@ -51,6 +52,9 @@ struct RenderRequest {
   // A brick of a distributed render: the transmittance of the bricks in front, block by block,
   // for backends that support it (BackendCapabilities::front_transmittance); null: none.
   FrontTransmittance* front = nullptr;
+  // Set from any thread (the Python module's Ctrl-C) to stop the render early: render() then
+  // throws svr::Cancelled instead of returning a partial image. Null: the render runs to the end.
+  const std::atomic<bool>* stop = nullptr;
 };
 
 class Renderer {
@@ -60,7 +64,7 @@ class Renderer {
   std::string name() const { return info().name; }
 
   // Throws svr::Error for a request the backend does not support, bad options, or a non-finite
-  // value in the image.
+  // value in the image; svr::Cancelled when request.stop was set during the render.
   LightIndependentImage render(const RenderRequest& request,
                                const ProgressFn& progress = nullptr) const;
 

@@ -103,7 +103,10 @@ double valueAt(ScalarType type, const std::byte* p) {
 
 Volume::Volume(Dims dims, glm::dvec3 spacing, ScalarType type, std::vector<std::byte> data,
                std::string source)
-    : dims_(dims), spacing_(spacing), type_(type), data_(std::move(data)),
+    : dims_(dims),
+      spacing_(spacing),
+      type_(type),
+      data_(std::make_shared<const std::vector<std::byte>>(std::move(data))),
       source_(std::move(source)) {
   for (int a = 0; a < 3; ++a)
     if (dims_[a] < 1)
@@ -114,13 +117,14 @@ Volume::Volume(Dims dims, glm::dvec3 spacing, ScalarType type, std::vector<std::
       throw Error(fmt::format("{}: spacing {} is {}; it must be finite and > 0", source_, a,
                               spacing_[a]));
   const std::size_t expect = voxelCount() * bytesPerVoxel(type_);
-  if (data_.size() != expect)
+  if (data_->size() != expect)
     throw Error(fmt::format("{}: {} bytes of voxels, but {}×{}×{} {} needs {}", source_,
-                            data_.size(), dims_[0], dims_[1], dims_[2], toString(type_), expect));
+                            data_->size(), dims_[0], dims_[1], dims_[2], toString(type_), expect));
   const std::size_t n = voxelCount(), step = bytesPerVoxel(type_);
+  const std::byte* bytes = data_->data();
   double lo = INFINITY, hi = -INFINITY;
   for (std::size_t i = 0; i < n; ++i) {
-    const double v = valueAt(type_, data_.data() + i * step);
+    const double v = valueAt(type_, bytes + i * step);
     if (!std::isfinite(v))
       throw Error(fmt::format("{}: voxel ({}, {}, {}) is {}; voxels must be finite", source_,
                               i % dims_[0], (i / dims_[0]) % dims_[1], i / (std::size_t(dims_[0]) * dims_[1]), v));
@@ -138,7 +142,7 @@ Volume Volume::fromValues(Dims dims, glm::dvec3 spacing, const std::vector<float
 }
 
 double Volume::value(std::size_t i) const {
-  return valueAt(type_, data_.data() + i * bytesPerVoxel(type_));
+  return valueAt(type_, data_->data() + i * bytesPerVoxel(type_));
 }
 
 glm::dvec3 Volume::extent() const {
@@ -158,10 +162,11 @@ glm::dvec3 Volume::worldPosition(double x, double y, double z) const {
 std::vector<float> Volume::toFloat() const {
   std::vector<float> out(voxelCount());
   const std::size_t step = bytesPerVoxel(type_);
+  const std::byte* bytes = data_->data();
   const std::int64_t n = static_cast<std::int64_t>(out.size());
 #pragma omp parallel for schedule(static) if (n >= kParallelVoxels)
   for (std::int64_t i = 0; i < n; ++i)
-    out[i] = static_cast<float>(valueAt(type_, data_.data() + i * step));
+    out[i] = static_cast<float>(valueAt(type_, bytes + i * step));
   return out;
 }
 

@@ -8,6 +8,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <glm/vec3.hpp>
+#include <memory>
 #include <optional>
 #include <string>
 #include <utility>
@@ -52,8 +53,8 @@ class Volume {
   std::size_t voxelCount() const {
     return static_cast<std::size_t>(dims_[0]) * dims_[1] * dims_[2];
   }
-  std::size_t bytes() const { return data_.size(); }
-  const std::vector<std::byte>& data() const { return data_; }
+  std::size_t bytes() const { return data_->size(); }
+  const std::vector<std::byte>& data() const { return *data_; }
 
   // Value of one voxel in data units.
   double value(int x, int y, int z) const { return value(index(x, y, z)); }
@@ -82,7 +83,10 @@ class Volume {
   Dims dims_{0, 0, 0};
   glm::dvec3 spacing_{1.0};
   ScalarType type_ = ScalarType::kFloat32;
-  std::vector<std::byte> data_;
+  // Shared, never changed after construction: copies of a volume (a scene copied per render,
+  // the Python module's renders of one scene) share its voxels instead of copying them.
+  std::shared_ptr<const std::vector<std::byte>> data_ =
+      std::make_shared<const std::vector<std::byte>>();
   std::string source_;
   std::pair<double, double> range_{0.0, 0.0};
   std::optional<VolumeBrick> brick_;

@@ -74,6 +74,7 @@ void traceTilesOf(const raycast::TileJob& job, raycast::TileFn fn, ProgressCount
   const int tiles = tiles_x * ((job.y1 - job.y0 + kTile - 1) / kTile);
 #pragma omp parallel for schedule(dynamic)
   for (int t = 0; t < tiles; ++t) {
+    if (progress.stopped()) continue;  // the rest is skipped, then Cancelled
     raycast::TileJob tile = job;
     tile.x0 = job.x0 + t % tiles_x * kTile, tile.y0 = job.y0 + t / tiles_x * kTile;
     tile.x1 = std::min(tile.x0 + kTile, job.x1), tile.y1 = std::min(tile.y0 + kTile, job.y1);

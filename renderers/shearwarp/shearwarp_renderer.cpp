@@ -195,6 +195,7 @@ LightIndependentImage ShearWarpRenderer::renderImpl(const RenderRequest& req,
     std::vector<int> links;
 #pragma omp for schedule(dynamic)
     for (int b = 0; b < bands; ++b) {
+      if (progress.stopped()) continue;  // the rest is skipped, then Cancelled
       const int v0 = b * kBand, v1 = std::min((b + 1) * kBand, view.height);
       intermediate.clearRows(v0, v1);
       fn(job, v0, v1, links);

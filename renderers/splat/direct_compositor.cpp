@@ -156,6 +156,7 @@ void compositeDirect(const SplatCoverage& coverage, const Bands& bands, float te
   progress.stage(bands.count);
 #pragma omp parallel for schedule(dynamic)
   for (int b = 0; b < bands.count; ++b) {
+    if (progress.stopped()) continue;  // the rest is skipped, then Cancelled
     BandState state(image, b * bands.rows, std::min((b + 1) * bands.rows, image.height()),
                     termination);
     band_kernel(coverage, bands.of(b), state);

@@ -291,6 +291,7 @@ void compositeSheets(const SplatCoverage& coverage, const Bands& bands, double t
   progress.stage(bands.count);
 #pragma omp parallel for schedule(dynamic)
   for (int b = 0; b < bands.count; ++b) {
+    if (progress.stopped()) continue;  // the rest is skipped, then Cancelled
     BandState state(image, b * bands.rows, std::min((b + 1) * bands.rows, image.height()),
                     termination);
     compositeBand(coverage, bands.of(b), first_sheet, thickness, post, state);
