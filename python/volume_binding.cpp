@@ -19,16 +19,16 @@
 namespace svr::python {
 namespace {
 
+// Native byte order only: a byte-swapped array ('>u2' on this machine) is named as such.
 ScalarType scalarTypeOf(const py::array& a) {
-  const py::dtype dt = a.dtype();
-  if (dt.is(py::dtype::of<std::uint8_t>())) return ScalarType::kUint8;
-  if (dt.is(py::dtype::of<std::uint16_t>())) return ScalarType::kUint16;
-  if (dt.is(py::dtype::of<std::int16_t>())) return ScalarType::kInt16;
-  if (dt.is(py::dtype::of<float>())) return ScalarType::kFloat32;
+  if (py::isinstance<py::array_t<std::uint8_t>>(a)) return ScalarType::kUint8;
+  if (py::isinstance<py::array_t<std::uint16_t>>(a)) return ScalarType::kUint16;
+  if (py::isinstance<py::array_t<std::int16_t>>(a)) return ScalarType::kInt16;
+  if (py::isinstance<py::array_t<float>>(a)) return ScalarType::kFloat32;
   throw py::value_error(fmt::format(
-      "Volume.from_numpy: dtype {} is not one of uint8, uint16, int16, float32 (convert with "
-      "a.astype(np.float32))",
-      dt.attr("name").cast<std::string>()));
+      "Volume.from_numpy: {} is not one of uint8, uint16, int16, float32 in native byte order "
+      "(convert with a.astype(np.float32))",
+      py::repr(a.dtype()).cast<std::string>()));
 }
 
 // Index of the first non-finite value of a float32 array in array order, or -1.
@@ -112,8 +112,10 @@ void bindVolume(py::module_& m) {
   py::class_<PyVolume>(m, "Volume", "A regular grid of scalars or labels, x fastest.")
       .def_static(
           "from_numpy",
-          [](const py::array& a, std::tuple<double, double, double> spacing,
+          [](const py::object& array, std::tuple<double, double, double> spacing,
              const std::string& axes) {
+            const py::array a = py::array::ensure(array);
+            if (!a) throw py::value_error("Volume.from_numpy: expected a numpy array");
             try {
               return fromNumpy(a, spacing, axes);
             } catch (const Error& e) {

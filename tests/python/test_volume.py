@@ -69,16 +69,18 @@ GOOD = np.zeros((8, 8, 8), np.float32)
 
 
 @pytest.mark.parametrize("array,message", [
-    (np.zeros((8, 8, 8), np.float64), "dtype float64 is not one of"),
-    (np.zeros((8, 8, 8), np.int32), "dtype int32 is not one of"),
-    (np.zeros((8, 8, 8), bool), "dtype bool is not one of"),
+    (np.zeros((8, 8, 8), np.float64), "float64.* is not one of"),
+    (np.zeros((8, 8, 8), np.int32), "int32.* is not one of"),
+    (np.zeros((8, 8, 8), bool), "bool.* is not one of"),
     (np.zeros((8, 8), np.uint8), "3-D array; this one has 2"),
     (np.zeros((2, 8, 8, 8), np.uint8), "3-D array; this one has 4"),
     (np.zeros((8, 16, 8), np.uint8)[:, ::2, :], "not contiguous"),
     (np.where(np.arange(512).reshape(8, 8, 8) == 77, np.nan, GOOD).astype(np.float32), "NaN or Inf"),
     (np.where(np.arange(512).reshape(8, 8, 8) == 3, np.inf, GOOD).astype(np.float32), "NaN or Inf"),
     (np.zeros((0, 8, 8), np.uint8), "an axis of 0 voxels"),
-    ([[[1, 2], [3, 4]]], "dtype int64 is not one of"),
+    (np.zeros((8, 8, 8), ">u2"), "'>u2'.* native byte order"),
+    ("volume.nrrd", "3-D array; this one has 0"),
+    ([[[1, 2], [3, 4]]], "int64.* is not one of"),
 ])
 def test_bad_arrays_raise_value_error(svr_module, array, message):
     with pytest.raises(ValueError, match=message):
