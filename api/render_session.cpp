@@ -29,6 +29,7 @@ SessionSpectra::SessionSpectra(const std::string& dir)
 RenderSession::RenderSession(std::shared_ptr<const SessionSpectra> spectra, Scene scene,
                              const RenderSettings& settings, const std::string& source)
     : spectra_(std::move(spectra)), settings_(settings), source_(source), scene_(std::move(scene)) {
+  const auto t_setup = std::chrono::steady_clock::now();
   if (settings.width < 0 || settings.height < 0)
     throw Error(fmt::format("RenderSettings: image size {}×{} is negative", settings.width,
                             settings.height));
@@ -48,6 +49,7 @@ RenderSession::RenderSession(std::shared_ptr<const SessionSpectra> spectra, Scen
   light_spectra_ = sceneIlluminations(scene_, observer);
   for (const auto& l : scene_.lights) light_names_.push_back(l.name);
   for (const auto& m : scene_.mixes) light_names_.push_back(m.name);
+  timings_.setup = msSince(t_setup);
 }
 
 void RenderSession::render(const ProgressFn& progress, const std::atomic<bool>* stop) {

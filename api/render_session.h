@@ -68,8 +68,9 @@ class RenderSession {
   void save(const std::string& dir, bool quiet = true) const;
 
   // Milliseconds of the steps, for the record and the Python module's overhead bench.
+  // setup: the whole constructor (model and classification included).
   struct Timings {
-    double model = 0, classify = 0, render = 0;
+    double setup = 0, model = 0, classify = 0, render = 0;
   };
   const Timings& timings() const { return timings_; }
 

@@ -139,12 +139,14 @@ void bindImage(py::module_& m) {
           [](const PyImage& im) {
             const RenderSession::Timings& t = im.session->timings();
             py::dict d;
+            d["setup_ms"] = t.setup;
             d["model_ms"] = t.model;
             d["classify_ms"] = t.classify;
             d["render_ms"] = t.render;
             return d;
           },
-          "Milliseconds the library spent: making the model, classifying, rendering.")
+          "Milliseconds the library spent: setting up (the model and the classification "
+          "included), making the model, classifying, rendering.")
       .def("relight", &relight, py::arg("light"), py::arg("linear") = false,
            py::arg("out") = py::none(),
            "The image under a light: a library or scene name ('D65'), a mix {'D65': 0.5, "

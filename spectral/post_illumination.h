@@ -47,7 +47,7 @@ class PostIlluminator {
   Eigen::MatrixXd light_matrix_;  // 3 × imageChannels, to XYZ, exposure included
   Eigen::VectorXd background_;
   KernelForce force_;
-  std::array<std::uint8_t, kSrgbLutSize + kSrgbLutPadding> srgb_lut_{};
+  const std::uint8_t* srgb_lut_;  // the process's one table (post_illumination.cpp)
 };
 
 }  // namespace svr

@@ -63,7 +63,9 @@ def test_image_views_and_model(image):
     assert model["model"] == "factor:6" and model["k"] == 6 and model["asked"] == "factor:6"
     assert model["light_matrix"] == "full"
     assert image.renderer == "raycast" and (image.width, image.height) == (SIZE, SIZE)
-    assert set(image.timings) == {"model_ms", "classify_ms", "render_ms"}
+    t = image.timings
+    assert set(t) == {"setup_ms", "model_ms", "classify_ms", "render_ms"}
+    assert t["setup_ms"] >= t["model_ms"] + t["classify_ms"] and t["render_ms"] > 0
 
 
 def test_views_outlive_the_image(engine):

@@ -5,14 +5,17 @@
 #include <gtest/gtest.h>
 #include <omp.h>
 
+#include <atomic>
 #include <cmath>
 #include <cstring>
 #include <thread>
 
 #include "renderers/core/classification.h"
+#include "renderers/core/scene_render.h"
 #include "renderers/scene_model.h"
 #include "renderers/registry.h"
 #include "spectral/componentwise_model.h"
+#include "spectral/error.h"
 #include "spectral/light_mixer.h"
 #include "spectral/post_illumination.h"
 #include "tests/renderers/test_scenes.h"
@@ -178,6 +181,38 @@ TEST(Determinism, ParallelRendersEqualSequentialOnes) {
     EXPECT_TRUE(seq_a == par_a) << backend << ": phantom differs when rendered in parallel";
     EXPECT_TRUE(seq_b == par_b) << backend << ": slab differs when rendered in parallel";
   }
+}
+
+// A render asked to stop (RenderRequest::stop, the Python module's Ctrl-C) throws Cancelled
+// and returns no image, from every backend that looks at the flag, whether it was set before
+// the render or by the progress callback at its first report; the same request without it
+// renders. One thread, so that the reporting thread is the one that works (with more, the
+// others may finish every tile before it reports).
+TEST(Robustness, StopFlagCancelsTheRender) {
+  const int threads = omp_get_max_threads();
+  omp_set_num_threads(1);
+  const auto model = makeSpectralModel(test::rendererObserver(), 6);
+  const Scene scene = smallPhantom(64);
+  const ClassifiedVolume cv = classifyScene(scene, *model);
+  for (const std::string& backend : rendererNames()) {
+    if (backendEntry(backend).info.supports.needs_gl) continue;  // one pass: nothing to skip
+    const auto renderer = makeRenderer(backend);
+    std::atomic<bool> stop{true};
+    RenderRequest request = sceneRequest(scene, cv);
+    request.stop = &stop;
+    EXPECT_THROW(renderer->render(request), Cancelled) << backend;
+    stop = false;
+    int calls = 0;
+    const ProgressFn first_report = [&](double) {
+      ++calls;
+      stop = true;
+    };
+    EXPECT_THROW(renderer->render(request, first_report), Cancelled) << backend;
+    EXPECT_GT(calls, 0) << backend;
+    stop = false;
+    EXPECT_NO_THROW(renderer->render(request)) << backend;
+  }
+  omp_set_num_threads(threads);
 }
 
 }  // namespace
