@@ -3,7 +3,7 @@
 time beside ours on the same view, size and thread count, and ours/peer (< 1: we are faster).
 
   python3 bench/peers/table.py out/peers              (prints; writes out/peers/peers.json)
-  python3 bench/peers/table.py out/peers --markdown   (the same as markdown, for docs/performance.md)
+  python3 bench/peers/table.py out/peers --markdown   (the same as markdown, for docs/performance*)
   python3 bench/peers/table.py out/peers --chart docs/performance/peers_ratios.png   (and a bar chart)
 
 Inputs (any may be missing; its rows are then left out):

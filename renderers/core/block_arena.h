@@ -4,8 +4,8 @@
 // from large blocks. The blocks are ordinary 4 KiB pages, not huge ones (huge_pages.h): they are
 // written once, in order, where a huge page saves little, and under virtualisation the first
 // touch of fresh huge pages can be slow and erratic (the host must supply 2 MiB blocks the guest
-// had freed). docs/performance.md has the measurement: the frog's first frames against steady
-// ones, with the records on huge pages and on 4 KiB pages.
+// had freed). docs/performance/2026-12-06-pic-and-huge-pages.md has the measurement: the
+// frog's first frames against steady ones, with the records on huge pages and on 4 KiB pages.
 
 #include <cstddef>
 #include <memory>

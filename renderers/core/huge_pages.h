@@ -3,8 +3,8 @@
 // madvise: only memory advised so gets them), for arrays read across their rows: a walk that
 // crosses a row of a large image at every step (shear-warp's warp under rotation) touches a new
 // 4 KiB page at most steps, and each TLB miss costs a page walk (a nested one under
-// virtualisation); with 2 MiB pages the whole image takes a few TLB entries (docs/performance.md
-// gives what 4 KiB pages cost the warp). Not for memory written once and read in order
+// virtualisation); with 2 MiB pages the whole image takes a few TLB entries
+// (docs/performance/2026-12-06-pic-and-huge-pages.md gives what 4 KiB pages cost the warp). Not for memory written once and read in order
 // (block_arena.h): the first touch of fresh huge pages can be slow and erratic.
 // Requests under one huge page come from malloc as usual.
 
