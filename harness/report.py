@@ -5,7 +5,8 @@
 
 Writes, per compare folder: a ΔE2000 heat map with a colour bar beside every error map
 (maps/**/*.pfm → .png), speed_accuracy.png and speed_accuracy.json (time per frame against
-mean ΔE2000, both log, Pareto front marked), and report.html: one self-contained page (images
+mean ΔE2000, both log, Pareto front marked and its points labelled where the labels do not
+overlap; one marker per backend and one colour per model across every chart), and report.html: one self-contained page (images
 embedded) with the relit images side by side per light, the error maps, the chart and the tables.
 A demo folder gets one report.html with a section per scene. Needs Debian's python3-matplotlib.
 """
@@ -14,11 +15,13 @@ import html
 import json
 import os
 import sys
+import zlib
 
 import matplotlib
 
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
+import matplotlib.transforms  # noqa: E402
 import numpy as np  # noqa: E402
 
 
@@ -64,41 +67,109 @@ def pareto(points):
     return sorted(front, key=lambda i: points[i][0])
 
 
+# One marker per backend and one colour per model, the same in every chart of every report, so
+# that a point reads alike across scenes and runs. Names not listed get a marker and a colour
+# from a stable hash of the name.
+BACKEND_MARKERS = {"raycast": "o", "shearwarp": "s", "splat": "D", "gl": "^"}
+MODEL_COLOURS = {"rgb": "#7f7f7f", "factor:3": "#bcbd22", "factor:4": "#ff7f0e",
+                 "factor:6": "#1f77b4", "factor:8": "#2ca02c", "factor:6/projected": "#9467bd",
+                 "spectral:31": "#d62728", "spectral:81": "#000000"}
+
+
+def marker_of(backend):
+    return BACKEND_MARKERS.get(backend) or "v<>p*hXP"[zlib.crc32(backend.encode()) % 8]
+
+
+def colour_of(model):
+    return MODEL_COLOURS.get(model) or plt.get_cmap("tab20")(zlib.crc32(model.encode()) % 20)
+
+
+def place_labels(fig, ax, front_points, taken):
+    """Labels for the Pareto points, each placed at the first of a ring of offsets around its
+    point where its box overlaps no other label, no point and stays inside the axes."""
+    renderer = fig.canvas.get_renderer()
+    inside = ax.get_window_extent(renderer)
+    for (x, y), text in front_points:
+        placed = None
+        for radius in (5, 12, 22, 34, 48, 64, 84):
+            for dx, dy in ((1, 1), (1, -1), (-1, 1), (-1, -1), (1, 0), (-1, 0), (0, 1), (0, -1)):
+                note = ax.annotate(
+                    text, (x, y), xytext=(dx * radius, dy * radius), textcoords="offset points",
+                    fontsize=7, ha="left" if dx > 0 else ("right" if dx < 0 else "center"),
+                    va="bottom" if dy > 0 else ("top" if dy < 0 else "center"),
+                    arrowprops=dict(arrowstyle="-", lw=0.5, color="0.4") if radius > 5 else None)
+                box = note.get_window_extent(renderer).expanded(1.04, 1.15)
+                if (inside.contains(box.x0, box.y0) and inside.contains(box.x1, box.y1)
+                        and not any(box.overlaps(t) for t in taken)):
+                    placed = box
+                    break
+                note.remove()
+            if placed:
+                break
+        if placed:
+            taken.append(placed)
+        # A label with no free place is left out of the chart; the hover title and the table
+        # still name the point.
+
+
 def speed_accuracy(folder, report):
-    labels, points = [], []
+    runs, points = [], []
     for run in report["runs"]:
         errors = [l["de_mean"] for l in run["lights"] if l["de_mean"] is not None]
         if not errors:
             continue
-        labels.append(run["label"])
+        runs.append(run)
         points.append((max(run["render_ms"], 1e-3), max(float(np.mean(errors)), 1e-3)))
+    labels = [run["label"] for run in runs]
     front = pareto(points)
-    fig, ax = plt.subplots(figsize=(7, 5), dpi=90)
-    renderers = sorted({l.split(" ")[0] for l in labels})
-    markers = dict(zip(renderers, "osD^v<>p*h"))
-    colours = {r: f"C{i}" for i, r in enumerate(renderers)}
-    for (t, e), label in zip(points, labels):
-        r = label.split(" ")[0]
-        ax.scatter(t, e, marker=markers[r], color=colours[r], s=40, label=r)
-        ax.annotate(label[len(r) + 1:], (t, e), fontsize=7, xytext=(4, 3), textcoords="offset points")
+    fig, ax = plt.subplots(figsize=(8.5, 5), dpi=90)
+    for (t, e), run in zip(points, runs):
+        ax.scatter(t, e, marker=marker_of(run["renderer"]), color=colour_of(run["model"]), s=40,
+                   zorder=3)
     if front:
         ax.plot([points[i][0] for i in front], [points[i][1] for i in front], "k--", lw=1,
-                label="Pareto front")
+                zorder=2)
     ax.set_xscale("log")
     ax.set_yscale("log")
     ax.set_xlabel("render time per frame (ms)")
     ax.set_ylabel("mean ΔE2000 against spectral:81 reference")
     ax.set_title(os.path.basename(report["scene"]))
-    handles, names = ax.get_legend_handles_labels()
-    unique = dict(zip(names, handles))
-    ax.legend(unique.values(), unique.keys(), fontsize=8)
+    # The legend keys the two channels apart: black markers for backends, squares for models.
+    keys = [plt.Line2D([], [], ls="", marker=marker_of(b), color="k", label=b)
+            for b in dict.fromkeys(run["renderer"] for run in runs)]
+    keys += [plt.Line2D([], [], ls="", marker="s", color=colour_of(m), label=m)
+             for m in dict.fromkeys(run["model"] for run in runs)]
+    keys.append(plt.Line2D([], [], ls="--", color="k", lw=1, label="Pareto front"))
+    # Beside the axes, where it covers no point.
+    ax.legend(handles=keys, fontsize=7, loc="upper left", bbox_to_anchor=(1.01, 1.0))
+    ax.margins(0.1)
     ax.grid(True, which="both", alpha=0.3)
     fig.tight_layout()
+    # Pixel positions once the layout is final: for the labels, and for the page's hover titles.
+    pixels = [ax.transData.transform(p) for p in points]
+    taken = [matplotlib.transforms.Bbox.from_bounds(px - 5, py - 5, 10, 10) for px, py in pixels]
+    place_labels(fig, ax, [(points[i], labels[i]) for i in front], taken)
     fig.savefig(os.path.join(folder, "speed_accuracy.png"))
+    height = fig.get_size_inches()[1] * fig.dpi
     plt.close(fig)
     with open(os.path.join(folder, "speed_accuracy.json"), "w") as f:
-        json.dump({"points": [{"run": l, "ms": p[0], "de_mean": p[1], "pareto": i in front}
-                              for i, (l, p) in enumerate(zip(labels, points))]}, f, indent=1)
+        json.dump({"points": [{"run": l, "ms": p[0], "de_mean": p[1], "pareto": i in front,
+                               "x": round(float(px[0]), 1), "y": round(float(height - px[1]), 1)}
+                              for i, (l, p, px) in enumerate(zip(labels, points, pixels))]},
+                  f, indent=1)
+
+
+def chart_with_titles(folder, name):
+    """The chart, with an image map whose circles give every point's run, time and error on
+    hover (pixel positions from speed_accuracy.json)."""
+    with open(os.path.join(folder, "speed_accuracy.json")) as f:
+        points = json.load(f)["points"]
+    areas = "".join(
+        f"<area shape=circle coords='{p['x']:.0f},{p['y']:.0f},7' "
+        f"title='{html.escape(p['run'])}: {p['ms']:.1f} ms, mean ΔE2000 {p['de_mean']:.3f}"
+        f"{' (Pareto front)' if p['pareto'] else ''}'>" for p in points)
+    return (f"<img src='{embed(folder, 'speed_accuracy.png')}' usemap='#{name}'>"
+            f"<map name='{name}'>{areas}</map>")
 
 
 def embed(folder, rel):
@@ -130,7 +201,7 @@ def section(folder, report):
         described.setdefault(run.get("model_asked", run["model"]), run.get("model_description", ""))
     parts.append("<ul class=models>" + "".join(
         f"<li><b>{e(asked)}</b>: {e(text)}</li>" for asked, text in described.items()) + "</ul>")
-    parts.append(f"<img src='{embed(folder, 'speed_accuracy.png')}'>")
+    parts.append(chart_with_titles(folder, "chart-" + slug(report["scene"])))
     parts.append("<table><tr><th>run</th><th>model</th><th>ms/frame</th><th>first frame ms</th>"
                  "<th>relight fps</th>"
                  "<th>light</th><th>mean ΔE</th><th>p95</th><th>max</th><th>vs raycast</th>"
