@@ -1,5 +1,5 @@
 #pragma once
-// The comparison at the heart of the harness (DESIGN §6): one scene rendered by the reference
+// The comparison at the heart of the harness (design.md §6): one scene rendered by the reference
 // (raycast, spectral:81, step ≤ 0.25 voxel, no early termination) and by any backend × colour
 // model; every run relit under every scene light and mix and measured against the reference
 // (colour-model plus algorithm error) and against the raycaster with the same model (algorithm
@@ -21,7 +21,7 @@
 
 namespace svr {
 
-// The reference every run is measured against (DESIGN §6): the raycaster with the full
+// The reference every run is measured against (design.md §6): the raycaster with the full
 // spectral model, a fine step and every sample composited.
 struct Reference {
   std::string renderer = "raycast";

@@ -1,6 +1,6 @@
 #pragma once
 // `svr model-error`: how far each colour model is from the exact spectral product, on the
-// standard sets (DESIGN §4) or on a scene's own palette.
+// standard sets (design.md §4) or on a scene's own palette.
 
 #include <string>
 #include <vector>

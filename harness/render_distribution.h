@@ -1,5 +1,5 @@
 #pragma once
-// What a distributed render changes in `svr render` (DESIGN §5b): each process reads, classifies
+// What a distributed render changes in `svr render` (design.md §5b): each process reads, classifies
 // and renders one brick, the processes agree on the whole volume's ranges and on failures, and
 // one of them composites and writes. harness/mpi/ implements it over MPI for svr-mpi; `svr
 // render` runs without one. The rest of the command — scene, model, relighting, the files it

@@ -1,5 +1,5 @@
 #pragma once
-// `svr sweep SCENE --param NAME=FROM:TO:STEP`: test stability where methods fail (DESIGN §6).
+// `svr sweep SCENE --param NAME=FROM:TO:STEP`: test stability where methods fail (design.md §6).
 // At every value the reference and each renderer render again; the ΔE2000 curve against the
 // reference and the time are written to sweep.json with flags for jumps, NaN/Inf and blow-ups,
 // and drawn as sweep_<param>.png. Parameters: azimuth, elevation (degrees), zoom, step (voxels),

@@ -1,6 +1,6 @@
 // svr.Image: a rendered light-independent image. S and T are read-only numpy views of its planes
 // (H × W × k and H × W × t, no copy); relight applies any light afterwards (post-illumination,
-// DESIGN §5) and returns sRGB; save writes what `svr render` writes.
+// design.md §5) and returns sRGB; save writes what `svr render` writes.
 
 #include <fmt/format.h>
 #include <pybind11/numpy.h>

@@ -1,4 +1,4 @@
-// svr.Volume.from_numpy: a 3-D numpy array as svr's Volume (x fastest, DESIGN §7). The array's
+// svr.Volume.from_numpy: a 3-D numpy array as svr's Volume (x fastest, design.md §7). The array's
 // axes are named by `axes`: "xyz" (a[x, y, z], as VTK, PyVista and nibabel index) or "zyx"
 // (a[z, y, x], as TIFF stacks, scikit-image and pydicom slices do). A Fortran-ordered "xyz"
 // array or a C-ordered "zyx" one is x-fastest already and is taken with one straight copy into

@@ -1,5 +1,5 @@
 #pragma once
-// The colour model a scene renders with — "model no more than a scene needs" (DESIGN §4):
+// The colour model a scene renders with — "model no more than a scene needs" (design.md §4):
 //   rgb, spectral:n   fixed models;
 //   factor:k          trained on the scene's own palette, what its image holds: its lights ×
 //                     its materials' reflectances, the specular white and the backdrop, with

@@ -1,5 +1,5 @@
 #pragma once
-// The one interface every colour model offers (DESIGN §4): coefficients of a spectrum, the
+// The one interface every colour model offers (design.md §4): coefficients of a spectrum, the
 // coefficients of flat white, a 3×k matrix to XYZ, and the product of a spectrum with
 // coefficients. `rgb`, `spectral:n` and `factor:k` take products componentwise; `linear:k`
 // (Peercy 1993) uses a k×k matrix per interaction.

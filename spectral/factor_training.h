@@ -1,5 +1,5 @@
 #pragma once
-// Training the factor model (Drew & Finlayson; Bergner et al. 2009 §2.2–2.3, DESIGN §4):
+// Training the factor model (Drew & Finlayson; Bergner et al. 2009 §2.2–2.3, design.md §4):
 // uncentred PCA of colour signals, interval sharpening, then refinement of the sharpening
 // transform T (and of the interval borders) against the product error on the training set,
 // single products *and* deep-absorption products, with the coefficients kept bounded.
@@ -25,7 +25,7 @@ struct TrainingSet {
   std::vector<int> depths{16, 64, 256};
 };
 
-// The deep-absorption absorber of the DESIGN: t = 0.97 + 0.03·r, with r a different chip.
+// The deep-absorption absorber of design.md §4: t = 0.97 + 0.03·r, with r a different chip.
 Spectrum weakAbsorber(const Spectrum& reflectance);
 // For each j, a partner index != j drawn with the given seed (a fixed, portable generator).
 std::vector<int> partnerIndices(int count, unsigned seed);

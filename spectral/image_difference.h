@@ -1,6 +1,6 @@
 #pragma once
 // ΔE2000 between two light-independent images relit under the same light: the accuracy metric
-// of the comparison harness and of the backend tests (DESIGN §6). Statistics are over covered
+// of the comparison harness and of the backend tests (design.md §6). Statistics are over covered
 // pixels, those where either image's transmittance has fallen below `coverage` (the volume is
 // there); the map holds ΔE2000 per pixel (0 where not covered).
 

@@ -1,5 +1,5 @@
 #pragma once
-// The light-independent image a renderer makes once (DESIGN §5): per pixel the k-channel
+// The light-independent image a renderer makes once (design.md §5): per pixel the k-channel
 // scattered radiance S and, where a background or later compositing needs it, the
 // transmittance T (k channels, or one scalar channel for achromatic absorbers). Planar: each
 // channel is one contiguous width×height plane, row 0 at the top, so relighting streams

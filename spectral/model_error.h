@@ -1,5 +1,5 @@
 #pragma once
-// Accuracy of a colour model against the exact spectral product (DESIGN §4): ΔE2000 between
+// Accuracy of a colour model against the exact spectral product (design.md §4): ΔE2000 between
 // the model's and the exact XYZ of light × reflectance (the "product" case) and of
 // light × reflectance × t^m (the "absorbM" cases, exposure-normalised so the light filtered by
 // t^m has Y = 1). Lab is taken against the light's own white (Y = 1).
@@ -53,7 +53,7 @@ std::vector<ModelErrorRow> evaluateModel(const ColourModel& model, const Observe
 
 namespace svr {
 
-// The standard benchmark of DESIGN §4: lights (default A, D65, F2, F7, F11, LED-B1, each at unit
+// The standard benchmark of design.md §4: lights (default A, D65, F2, F7, F11, LED-B1, each at unit
 // luminance); Munsell split 2/3 train, 1/3 held-out test (seed 0); ColorChecker as a second
 // test set; deep absorbers t = 0.97 + 0.03·r of a partner chip (seed 1) in each set.
 struct StandardSets {

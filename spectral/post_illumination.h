@@ -1,5 +1,5 @@
 #pragma once
-// Post-illumination (DESIGN §5): a light-independent image → relit pixels under any light or
+// Post-illumination (design.md §5): a light-independent image → relit pixels under any light or
 // weighted mix of lights, XYZ = M(L) · (S + T ⊙ b), M(L) the model's light matrix
 // (ColourModel::lightMatrix: toXyz · diag(P·L) projected, CMF · diag(L) · B full). A mix is the
 // weighted sum of its lights' spectra, M being linear in L. Everything light-dependent is

@@ -1,5 +1,5 @@
 #pragma once
-// RenderDistribution over MPI (DESIGN §5b): one brick of a kd-split per rank, the whole
+// RenderDistribution over MPI (design.md §5b): one brick of a kd-split per rank, the whole
 // volume's ranges by MPI_Allreduce, failures agreed by an all-reduce of the first failing rank
 // and a broadcast of its message, and the k-channel images composited in visibility order.
 //

@@ -1,4 +1,4 @@
-// svr-mpi: `svr render` distributed over MPI ranks (DESIGN §5b, docs/distributed.md).
+// svr-mpi: `svr render` distributed over MPI ranks (design.md §5b, docs/distributed.md).
 //   mpirun -np 4 svr-mpi render SCENE --out DIR [the options of svr render]
 // Every rank reads only its brick of the volume, classifies and renders it; the k-channel
 // images are composited in visibility order and rank 0 relights and writes what svr render

@@ -1,5 +1,5 @@
 #pragma once
-// Cameras (DESIGN §7): an orbit about the volume centre (azimuth about +z, elevation from the
+// Cameras (design.md §7): an orbit about the volume centre (azimuth about +z, elevation from the
 // xy-plane, distance) or an explicit look-at; field of view 0 = orthographic. Images have row 0
 // at the top and pixel centres at +0.5.
 

@@ -1,5 +1,5 @@
 #pragma once
-// Classification (DESIGN §2): the transfer function's materials baked into per-bin coefficient
+// Classification (design.md §2): the transfer function's materials baked into per-bin coefficient
 // tables for one colour model and one sample step, plus what every backend samples: the volume
 // as float, a scalar field for gradients, and min–max blocks for empty-space skipping. Built
 // once per transfer function, model and step; backends only read it.

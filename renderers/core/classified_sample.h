@@ -1,5 +1,5 @@
 #pragma once
-// One classified, shaded sample — the part every backend shares (DESIGN §5): the classification
+// One classified, shaded sample — the part every backend shares (design.md §5): the classification
 // entries around a sample blended into α, reflectance, specular weight and transmission, and the
 // Phong terms from a gradient. Backends differ in where samples lie and how they composite, not
 // in what a sample is, so this lives here once.

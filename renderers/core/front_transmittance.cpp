@@ -21,7 +21,7 @@ std::vector<int> footprintBlocks(const VoxelBox& own, const Dims& whole,
     for (int a = 0; a < 3; ++a) {
       // A voxel beyond the own box: the samples owned at its faces, with room for rounding.
       const double v = (corner >> a & 1) ? own.hi[a] + 1.0 : own.lo[a] - 1.0;
-      world[a] = (v - 0.5 * (whole[a] - 1)) * spacing[a];  // DESIGN §7
+      world[a] = (v - 0.5 * (whole[a] - 1)) * spacing[a];  // design.md §7
     }
     const glm::dvec3 q = world - camera.eye;
     double u = glm::dot(q, rays.right()), v = glm::dot(q, rays.up());

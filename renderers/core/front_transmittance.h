@@ -1,5 +1,5 @@
 #pragma once
-// Early ray termination across the bricks of a distributed render (DESIGN §5b). On its own a
+// Early ray termination across the bricks of a distributed render (design.md §5b). On its own a
 // brick behind others cannot see what lies in front of it, so it marches rays that the whole
 // render stops early: the engine at 512³ in two bricks took 40 % more samples in all than whole.
 // A FrontTransmittance hands a backend, block by block of the image, the transmittance of the

@@ -1,5 +1,5 @@
 #pragma once
-// The over operator on light-independent images (DESIGN §5b): an image in front of another is
+// The over operator on light-independent images (design.md §5b): an image in front of another is
 // S = S_f + T_f ⊙ S_b, T = T_f ⊙ T_b, componentwise over the k channels (one scalar T for
 // achromatic absorbers), like every product of the factor model. A distributed render
 // composites its bricks' images with it in visibility order and relights once afterwards, so

@@ -1,5 +1,5 @@
 #pragma once
-// A material of the spectral transfer function (paper §3.1, DESIGN §5): what it scatters
+// A material of the spectral transfer function (paper §3.1, design.md §5): what it scatters
 // (a reflectance spectrum, plus a flat-white specular weight) and how it absorbs (an absorption
 // spectrum, or achromatic), with opacity given per unit world length so that every backend and
 // every step size renders the same thing.

@@ -1,4 +1,4 @@
-// NRRD headers (attached .nrrd and detached .nhdr), parsed by teem's nrrd library (DESIGN §7:
+// NRRD headers (attached .nrrd and detached .nhdr), parsed by teem's nrrd library (design.md §7:
 // "teem for NRRD") with skipData, so teem reads no voxels and allocates nothing: the voxels are
 // read afterwards by readPayload (volume_source.cpp), once the memory budget has been checked,
 // straight into the Volume's buffer. That also gives one exact error for every short, long,

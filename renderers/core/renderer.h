@@ -1,5 +1,5 @@
 #pragma once
-// The interface every backend implements (DESIGN §3, §5): the same classified volume, camera
+// The interface every backend implements (design.md §3, §5): the same classified volume, camera
 // and shading in; the same light-independent k-channel image out (S, and T for the backdrop).
 // Backends differ only in how they sample and composite.
 //

@@ -1,5 +1,5 @@
 #pragma once
-// Splat footprints (DESIGN §5, splat): a voxel's Gaussian reconstruction kernel integrated along
+// Splat footprints (design.md §5, splat): a voxel's Gaussian reconstruction kernel integrated along
 // the viewing rays gives a 2D Gaussian in the image. For orthographic views that footprint is the
 // same for every voxel; perspective (and, in general, anisotropic spacing) makes it elliptical:
 // the EWA footprint of Zwicker et al. 2001, the kernel's covariance mapped through the local

@@ -1,5 +1,5 @@
 #pragma once
-// Spectral transfer functions: data value → material and opacity (DESIGN §5, paper §3).
+// Spectral transfer functions: data value → material and opacity (design.md §5, paper §3).
 //   1D: control points (value → material); between two neighbouring points the materials blend
 //       linearly (smooth transitions), outside them the end material holds; an opacity curve
 //       (piecewise linear, value → factor in [0, 1]) scales the materials' extinction.

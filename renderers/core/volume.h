@@ -1,5 +1,5 @@
 #pragma once
-// A regular grid of scalars (DESIGN §7): x fastest, then y, then z; world position of voxel
+// A regular grid of scalars (design.md §7): x fastest, then y, then z; world position of voxel
 // (i, j, k) = ((i, j, k) − (dims − 1)/2) ⊙ spacing, so the volume is centred at the origin.
 // Voxels keep their original type and values, so a transfer function's domain is in data units.
 // Label maps are volumes too; the scene says when values are labels.

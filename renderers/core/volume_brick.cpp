@@ -101,7 +101,7 @@ bool inFront(const KdBrick& a, const KdBrick& b, const Camera& camera, const Ray
   for (std::size_t i = 0; i < std::min(a.path.size(), b.path.size()); ++i) {
     if (a.path[i].low == b.path[i].low) continue;
     const int axis = a.path[i].axis;
-    // The plane in world space (DESIGN §7: voxel i at (i − (dims − 1)/2) · spacing).
+    // The plane in world space (design.md §7: voxel i at (i − (dims − 1)/2) · spacing).
     const double plane = (a.path[i].plane - 0.5 * (whole[axis] - 1)) * spacing[axis];
     const bool low_first = camera.orthographic() ? rays.forward()[axis] >= 0.0
                                                  : camera.eye[axis] <= plane;

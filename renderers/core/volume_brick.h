@@ -1,5 +1,5 @@
 #pragma once
-// Bricks of a volume for a distributed render (DESIGN §5b): a kd-split of the whole grid into N
+// Bricks of a volume for a distributed render (design.md §5b): a kd-split of the whole grid into N
 // boxes, one per process, each held with the ghost layers its samples need, and the visibility
 // order in which their images composite for a camera.
 //

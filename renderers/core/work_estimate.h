@@ -1,5 +1,5 @@
 #pragma once
-// A render's work, estimated before any brick is read (DESIGN §5b), so that a distributed
+// A render's work, estimated before any brick is read (design.md §5b), so that a distributed
 // render's kd-split can share out time rather than voxels. With the transmittance in front
 // passed between bricks (core/front_transmittance.h) a brick stops its rays where the whole
 // render does, so the bricks near the eye do most of the work: the engine at 512³, split at its

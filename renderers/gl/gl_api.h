@@ -2,7 +2,7 @@
 // The OpenGL 4.5 core entry points the gl backend calls, as one table of function pointers
 // loaded through the platform's GetProcAddress (OSMesa or EGL; gl_context.cpp). Nothing here
 // links a GL symbol directly: libOSMesa does not export the DSA entry points, and linking libGL
-// or libOpenGL beside it makes calls go silently nowhere (DESIGN §5). One table per context,
+// or libOpenGL beside it makes calls go silently nowhere (design.md §5). One table per context,
 // no globals.
 
 #include <GL/glcorearb.h>

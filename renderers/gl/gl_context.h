@@ -1,6 +1,6 @@
 #pragma once
 // An offscreen OpenGL 4.5 core context, owned RAII-style: the platform's context (OSMesa or EGL,
-// gl_platform.h; DESIGN §5) and the GL function table loaded through it. Both platforms bind a
+// gl_platform.h; design.md §5) and the GL function table loaded through it. Both platforms bind a
 // context to the calling thread, so a context is used by one thread at a time through a Current
 // guard, and everything a render draws goes to framebuffer objects (gl_framebuffer.h), never to
 // a default framebuffer.

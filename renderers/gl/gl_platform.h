@@ -6,7 +6,7 @@
 // and does everything else the same way on both.
 //
 // Neither platform links libGL or libOpenGL: their gl* symbols would shadow OSMesa's, and calls
-// would go silently nowhere (DESIGN §5). Every GL function comes from proc().
+// would go silently nowhere (design.md §5). Every GL function comes from proc().
 
 #include <memory>
 #include <string>

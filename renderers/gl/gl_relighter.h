@@ -1,5 +1,5 @@
 #pragma once
-// Post-illumination on OpenGL (DESIGN §5, issue 6): the same maths as PostIlluminator's relight
+// Post-illumination on OpenGL (design.md §5, issue 6): the same maths as PostIlluminator's relight
 // kernels — rgb = M · (plane_0, …, plane_{P−1}) with M the folded 3×P matrix, clamped to
 // [0, 1], sRGB-encoded, 8 bits — in a fragment shader over the planes held in a texture. The
 // image is uploaded once (setImage); each relight sends only the 3×P matrix as uniforms, draws

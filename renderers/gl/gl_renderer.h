@@ -1,5 +1,5 @@
 #pragma once
-// The OpenGL backend (DESIGN §5): OpenGL 4.5 core offscreen, on OSMesa or EGL (gl.platform;
+// The OpenGL backend (design.md §5): OpenGL 4.5 core offscreen, on OSMesa or EGL (gl.platform;
 // gl_platform.h), in one of two modes sharing context, programs, framebuffers and relighter:
 //   raycast  the CPU raycaster's algorithm as a fragment shader (gl_raycast_frame.h; issue 18),
 //            the default: the fast way to make an offscreen render;

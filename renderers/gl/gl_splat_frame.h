@@ -1,5 +1,5 @@
 #pragma once
-// gl.mode=splat (DESIGN §5, issue 6): the CPU splat backend's algorithm (renderers/splat) on
+// gl.mode=splat (design.md §5, issue 6): the CPU splat backend's algorithm (renderers/splat) on
 // OpenGL 4.5 core. Every voxel that scatters or absorbs is one Gaussian-footprint quad; the
 // voxel list is built and uploaded once per classification (gl_voxel_list.h), and each render
 // projects and depth-sorts it on the CPU (the splat backend's Projector, so positions and

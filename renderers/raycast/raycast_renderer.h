@@ -1,5 +1,5 @@
 #pragma once
-// The reference backend (DESIGN §5): a ray per pixel, front to back, trilinear samples, Phong
+// The reference backend (design.md §5): a ray per pixel, front to back, trilinear samples, Phong
 // shading with gradients precomputed at the voxels (core/gradient_volume.h; central differences
 // on the fly when they do not fit the memory budget), early ray termination, empty-space
 // skipping over min–max blocks, OpenMP over image tiles; orthographic and perspective cameras.

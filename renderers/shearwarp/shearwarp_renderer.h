@@ -1,5 +1,5 @@
 #pragma once
-// Shear-warp (Lacroute & Levoy 1994; DESIGN §5) on the shared spectral core: factor the
+// Shear-warp (Lacroute & Levoy 1994; design.md §5) on the shared spectral core: factor the
 // orthographic view into a shear of the slices along the principal axis and a 2D affine warp;
 // composite the run-length-encoded classified slices front to back into an intermediate image
 // at volume resolution (bilinear within a slice, opacity and transmission corrected for the

@@ -1,5 +1,5 @@
 #pragma once
-// The splatting backend (DESIGN §5, issue 5): every voxel that scatters or absorbs is a Gaussian
+// The splatting backend (design.md §5, issue 5): every voxel that scatters or absorbs is a Gaussian
 // kernel projected to an image footprint (core/splat_footprint.h: one for every splat of an
 // orthographic view, evaluated in factors (footprint_factors.h), EWA ellipses with a
 // screen-space low-pass per splat for perspective; splat_coverage.h), composited either through

@@ -1,4 +1,4 @@
-// Post-illumination in the browser (DESIGN §5): rgb = M · (S, T) per pixel, one 3 × P matrix per
+// Post-illumination in the browser (design.md §5): rgb = M · (S, T) per pixel, one 3 × P matrix per
 // frame (the mixed light, brightness and backdrop folded in, linear sRGB), then sRGB encoding.
 // WebGL2: the P half-float planes packed four to a layer of one RGBA16F texture array (⌈P/4⌉
 // layers), one fragment shader pass specialised to the layer count. The plain JS path (no

@@ -1,5 +1,5 @@
 // Bricks rendered one after another in one process and composited in visibility order equal the
-// whole volume's render (DESIGN §5b): the distributed render's correctness without MPI. The MPI
+// whole volume's render (design.md §5b): the distributed render's correctness without MPI. The MPI
 // executable runs the same steps across ranks (tests/mpi_render.py checks it end to end).
 
 #include <gtest/gtest.h>
