@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "renderers/core/scene.h"
+#include "renderers/registry.h"
 #include "renderers/scene_model.h"
 #include "spectral/colorimetry.h"
 #include "spectral/colour_model.h"
@@ -21,10 +22,11 @@
 
 namespace svr {
 
-// The reference every run is measured against (design.md §6): the raycaster with the full
-// spectral model, a fine step and every sample composited.
+// The reference every run is measured against (design.md §6): the reference backend (the
+// raycaster, as the registry names it) with the full spectral model, a fine step and every
+// sample composited.
 struct Reference {
-  std::string renderer = "raycast";
+  std::string renderer = referenceRendererName();
   double max_step_voxels = 0.25;  // the scene's step, or this if finer
   double termination = 0.0;       // no early termination
   static std::string model();     // "spectral:81": every sample of the standard grid

@@ -39,6 +39,7 @@ py::dict backendDict(const BackendEntry& e) {
   caps["max_channels"] = c.max_channels;
   caps["needs_gl"] = c.needs_gl;
   caps["bricks"] = c.bricks;
+  caps["reference"] = c.reference;
   d["supports"] = caps;
   py::list options;
   for (const OptionSpec& o : e.info.options) {

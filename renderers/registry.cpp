@@ -23,13 +23,6 @@ SVR_BACKENDS(SVR_DECLARE)
 #undef SVR_DECLARE
 }  // namespace backends
 
-BackendEntry unavailableBackend(std::string name, std::string why) {
-  BackendEntry entry;
-  entry.info.name = std::move(name);
-  entry.unavailable = std::move(why);
-  return entry;
-}
-
 const std::vector<BackendEntry>& backendEntries() {
 #define SVR_ENTRY(NAME) backends::NAME(),
   static const std::vector<BackendEntry> entries{SVR_BACKENDS(SVR_ENTRY)};
@@ -56,6 +49,12 @@ const BackendEntry& backendEntry(const std::string& name) {
 
 std::unique_ptr<Renderer> makeRenderer(const std::string& name) {
   return backendEntry(name).make();
+}
+
+const std::string& referenceRendererName() {
+  for (const auto& e : backendEntries())
+    if (e.make && e.info.supports.reference) return e.info.name;
+  throw Error("no reference backend is built (BackendCapabilities::reference)");
 }
 
 std::unique_ptr<Relighter> makeRelighter(const std::string& name) {

@@ -9,21 +9,9 @@
 #include <string>
 #include <vector>
 
-#include "renderers/core/backend_info.h"
-#include "renderers/core/relighter.h"
-#include "renderers/core/renderer.h"
+#include "renderers/core/backend_entry.h"
 
 namespace svr {
-
-struct BackendEntry {
-  BackendInfo info;
-  std::function<std::unique_ptr<Renderer>()> make;       // empty when not built
-  std::function<std::unique_ptr<Relighter>()> relighter;  // empty: relights on the CPU only
-  std::string unavailable;  // why the backend is not built (empty when it is)
-};
-
-// A backend whose folder was not built (cmake/SvrBackend.cmake: svr_backend_unavailable).
-BackendEntry unavailableBackend(std::string name, std::string why);
 
 // Every backend in the list, built or not.
 const std::vector<BackendEntry>& backendEntries();
@@ -33,6 +21,9 @@ std::vector<std::string> rendererNames();
 // or one that is not built (saying why).
 const BackendEntry& backendEntry(const std::string& name);
 std::unique_ptr<Renderer> makeRenderer(const std::string& name);
+// The built backend whose capabilities say it is the reference (BackendCapabilities::reference);
+// svr::Error when none is built.
+const std::string& referenceRendererName();
 std::unique_ptr<Relighter> makeRelighter(const std::string& name);
 
 // Checks backend options ({"splat": {"mode": "sheet"}, …}) as the backends will read them: every

@@ -189,8 +189,8 @@ std::string ModelProbe::size() const { return fmt::format("{}×{}", scene_.width
 
 LightIndependentImage ModelProbe::render(const ColourModel& model) const {
   const ClassifiedVolume cv = classifyScene(scene_, model);
-  // The raycaster: the harness's reference backend.
-  return makeRenderer("raycast")->render(sceneRequest(scene_, cv), nullptr);
+  // The harness's reference backend, as the registry names it.
+  return makeRenderer(referenceRendererName())->render(sceneRequest(scene_, cv), nullptr);
 }
 
 nlohmann::json SceneModel::record() const {

@@ -42,10 +42,10 @@ struct SceneModel {
   nlohmann::json record() const;
 };
 
-// auto's probe (issue 19): the scene itself rendered small by the raycaster with spectral:81,
-// the exact product, and a candidate's relit image compared with it under every light and mix,
-// the backdrop included. The probe and the candidates share step, termination and resolution,
-// so what differs is the colour model alone.
+// auto's probe (issue 19): the scene itself rendered small by the registry's reference backend
+// (the raycaster) with spectral:81, the exact product, and a candidate's relit image compared
+// with it under every light and mix, the backdrop included. The probe and the candidates share
+// step, termination and resolution, so what differs is the colour model alone.
 class ModelProbe {
  public:
   static constexpr int kLongerSide = 96;

@@ -5,7 +5,8 @@
   (Universal Ctags gives each function's first and last line; lambdas count in the function
   that holds them);
 - a backend (a folder of renderers/ with its own CMakeLists.txt) includes no other backend's
-  folder: what backends share lives in renderers/core/;
+  folder, nor the registry that lists them: what backends share lives in renderers/core/, and
+  each takes its entry's type from renderers/core/backend_entry.h;
 - the harness (and the public API) reaches backends only through renderers/registry.h: it
   includes no backend's folder.
 
@@ -19,6 +20,7 @@ import sys
 MAX_LINES = 120
 FOLDERS = ["spectral", "renderers", "harness", "api", "include", "python"]
 INCLUDE = re.compile(r'^\s*#\s*include\s+"renderers/([A-Za-z0-9_]+)/')
+REGISTRY = re.compile(r'^\s*#\s*include\s+"renderers/registry\.h"')
 
 
 def long_functions(root: str) -> list:
@@ -55,10 +57,15 @@ def crossed_includes(root: str) -> list:
         for path in sources(folder):
             with open(path, encoding="utf-8") as f:
                 for n, line in enumerate(f, 1):
+                    where = f"{os.path.relpath(path, root)}:{n}"
+                    if owner and REGISTRY.match(line):
+                        found.append(f"{where}: backend {owner} includes the registry (a backend "
+                                     f"takes its entry from renderers/core/backend_entry.h; only "
+                                     f"registry.* names the backends)")
+                        continue
                     m = INCLUDE.match(line)
                     if not m or m.group(1) not in backends or m.group(1) == owner:
                         continue
-                    where = f"{os.path.relpath(path, root)}:{n}"
                     if owner:
                         found.append(f"{where}: backend {owner} includes backend {m.group(1)}'s "
                                      f"folder (shared code belongs in renderers/core/)")
@@ -75,7 +82,8 @@ def main() -> int:
         print("FAIL:", p)
     if not problems:
         print(f"ok: no function over {MAX_LINES} lines in {', '.join(FOLDERS)}; no backend "
-              f"includes another's folder; the harness reaches backends only through the registry")
+              f"includes another's folder or the registry; the harness reaches backends only through the "
+              f"registry")
     return 1 if problems else 0
 
 

@@ -24,6 +24,9 @@ struct BackendCapabilities {
   bool bricks = false;
   // Takes RenderRequest::front: stops a brick's rays where the whole render stops them.
   bool front_transmittance = false;
+  // The backend the harness's reference and auto's probe render with (one in the registry):
+  // the others are measured against it.
+  bool reference = false;
 };
 
 struct BackendInfo {

@@ -6,7 +6,7 @@
 #include "renderers/core/splat_settings.h"
 #include "renderers/gl/gl_relighter.h"
 #include "renderers/gl/gl_state.h"
-#include "renderers/registry.h"
+#include "renderers/core/backend_entry.h"
 #include "spectral/error.h"
 
 namespace svr {

@@ -4,7 +4,7 @@
 
 #include "renderers/core/front_transmittance.h"
 #include "renderers/raycast/raycast_kernels.h"
-#include "renderers/registry.h"
+#include "renderers/core/backend_entry.h"
 #include "spectral/error.h"
 
 namespace svr {
@@ -55,7 +55,8 @@ const BackendInfo& RaycastRenderer::info() const {
       "a ray per pixel, trilinear samples, Phong; the reference backend",
       {.perspective = true, .spectral_transmittance = true, .max_channels = raycast::kMaxChannels,
        .bricks = true,
-       .front_transmittance = true},
+       .front_transmittance = true,
+       .reference = true},
       {OptionSpec::choice("gradients", {"auto", "precomputed", "on-the-fly"},
                           "normals from gradients precomputed at the voxels (8 bytes a voxel, "
                           "kept with the classification) or central differences per sample; "

@@ -13,7 +13,7 @@
 #include "renderers/shearwarp/shear_warp_factorization.h"
 #include "renderers/shearwarp/shearwarp_kernels.h"
 #include "spectral/error.h"
-#include "renderers/registry.h"
+#include "renderers/core/backend_entry.h"
 #include "renderers/shearwarp/rle_volume.h"
 
 namespace svr {

@@ -7,7 +7,7 @@
 
 #include "renderers/core/splat_footprint.h"
 #include "renderers/core/splat_settings.h"
-#include "renderers/registry.h"
+#include "renderers/core/backend_entry.h"
 #include "renderers/splat/direct_compositor.h"
 #include "renderers/splat/sheet_compositor.h"
 #include "renderers/splat/splat_coverage.h"

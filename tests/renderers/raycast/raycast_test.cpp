@@ -171,5 +171,14 @@ TEST(Registry, NamesEveryBackendAndRejectsUnknownOnes) {
   }
 }
 
+// The harness's reference and auto's probe take the backend the registry calls the reference:
+// exactly one entry says so, and it is the raycaster.
+TEST(Registry, OneReferenceBackendTheRaycaster) {
+  int references = 0;
+  for (const auto& e : backendEntries()) references += e.info.supports.reference ? 1 : 0;
+  EXPECT_EQ(references, 1);
+  EXPECT_EQ(referenceRendererName(), "raycast");
+}
+
 }  // namespace
 }  // namespace svr
