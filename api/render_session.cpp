@@ -9,18 +9,11 @@
 #include "harness/render_outputs.h"
 #include "renderers/core/scene_render.h"
 #include "renderers/registry.h"
+#include "spectral/elapsed.h"
 #include "spectral/error.h"
 #include "spectral/post_illumination.h"
 
 namespace svr {
-namespace {
-
-double msSince(std::chrono::steady_clock::time_point t0) {
-  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
-}
-
-}  // namespace
-
 SessionSpectra::SessionSpectra(const std::string& dir)
     : data_dir(dir),
       library(SpectrumLibrary::load(dir, grid)),
@@ -28,7 +21,7 @@ SessionSpectra::SessionSpectra(const std::string& dir)
 
 RenderSession::RenderSession(std::shared_ptr<const SessionSpectra> spectra, Scene scene,
                              const RenderSettings& settings, const std::string& source)
-    : spectra_(std::move(spectra)), settings_(settings), source_(source), scene_(std::move(scene)) {
+    : spectra_(std::move(spectra)), source_(source), scene_(std::move(scene)) {
   const auto t_setup = std::chrono::steady_clock::now();
   if (settings.width < 0 || settings.height < 0)
     throw Error(fmt::format("RenderSettings: image size {}×{} is negative", settings.width,
@@ -47,8 +40,7 @@ RenderSession::RenderSession(std::shared_ptr<const SessionSpectra> spectra, Scen
   classified_ = classifyScene(scene_, *model_.model);
   timings_.classify = msSince(t0);
   light_spectra_ = sceneIlluminations(scene_, observer);
-  for (const auto& l : scene_.lights) light_names_.push_back(l.name);
-  for (const auto& m : scene_.mixes) light_names_.push_back(m.name);
+  light_names_ = sceneIlluminationNames(scene_);
   timings_.setup = msSince(t_setup);
 }
 
@@ -93,26 +85,20 @@ Spectrum RenderSession::ownLight(const Spectrum& spectrum, const std::string& wh
   return spectra_->observer.unitLuminance(spectrum);
 }
 
-void RenderSession::relightSrgb8(const Spectrum& light, std::span<std::uint8_t> out) const {
-  const LightIndependentImage& im = image();
-  if (out.size() != 3 * im.pixels())
-    throw Error(fmt::format("relight: {} bytes given for a {}×{} image", out.size(), im.width(),
-                            im.height()));
+PostIlluminator RenderSession::relighter(const Spectrum& light) const {
   PostIlluminator post(*model_.model);
   if (scene_.background) post.setBackground(model_.model->project(*scene_.background));
   post.setLight(light);
-  post.relightSrgb8(im, out);
+  return post;
+}
+
+// PostIlluminator checks the output's size and names it in its error.
+void RenderSession::relightSrgb8(const Spectrum& light, std::span<std::uint8_t> out) const {
+  relighter(light).relightSrgb8(image(), out);
 }
 
 void RenderSession::relightLinear(const Spectrum& light, std::span<float> out) const {
-  const LightIndependentImage& im = image();
-  if (out.size() != 3 * im.pixels())
-    throw Error(fmt::format("relight: {} floats given for a {}×{} image", out.size(), im.width(),
-                            im.height()));
-  PostIlluminator post(*model_.model);
-  if (scene_.background) post.setBackground(model_.model->project(*scene_.background));
-  post.setLight(light);
-  post.relightLinear(im, out);
+  relighter(light).relightLinear(image(), out);
 }
 
 void RenderSession::save(const std::string& dir, bool quiet) const {

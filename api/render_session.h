@@ -17,6 +17,7 @@
 #include "renderers/scene_model.h"
 #include "spectral/colorimetry.h"
 #include "spectral/light_independent_image.h"
+#include "spectral/post_illumination.h"
 #include "spectral/spectrum_library.h"
 #include "svr/svr.h"
 
@@ -34,7 +35,8 @@ struct SessionSpectra {
 class RenderSession {
  public:
   // `source` names the scene in errors ("engine.json", "scene JSON"). The model is made here
-  // (trained, or read from the disk cache) and the volume classified.
+  // (trained, or read from the disk cache) and the volume classified. settings.data_dir is not
+  // read: the spectra come loaded.
   RenderSession(std::shared_ptr<const SessionSpectra> spectra, Scene scene,
                 const RenderSettings& settings, const std::string& source);
 
@@ -75,8 +77,10 @@ class RenderSession {
   const Timings& timings() const { return timings_; }
 
  private:
+  // The model's relighter with the scene's backdrop, set to `light`.
+  PostIlluminator relighter(const Spectrum& light) const;
+
   std::shared_ptr<const SessionSpectra> spectra_;
-  RenderSettings settings_;
   std::string source_;
   Scene scene_;
   SceneModel model_;

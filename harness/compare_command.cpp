@@ -219,6 +219,7 @@ CompareSummary runComparison(Scene scene, const CompareOptions& o) {
   report["skipped"] = summary.skipped;
   writeJson((fs::path(o.out_dir) / "report.json").string(), report);
   if (o.charts) renderReportCharts(o.out_dir);
+  summary.report = std::move(report);
   return summary;
 }
 

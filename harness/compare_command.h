@@ -28,6 +28,7 @@ struct CompareSummary {
   std::vector<Exceedance> exceedances;
   std::vector<std::string> skipped;  // "shearwarp skipped: … orthographic cameras only …"
   double reference_ms = 0.0;
+  nlohmann::json report;  // what report.json holds
 };
 
 // Runs every comparison and writes report.json and the images into out_dir (charts and HTML

@@ -9,16 +9,13 @@
 #include "renderers/scene_model.h"
 #include "renderers/registry.h"
 #include "spectral/componentwise_model.h"
+#include "spectral/elapsed.h"
 #include "spectral/error.h"
 #include "spectral/image_difference.h"
 #include "spectral/post_illumination.h"
 
 namespace svr {
 namespace {
-
-double msSince(std::chrono::steady_clock::time_point t0) {
-  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
-}
 
 // Luminance-weighted transmittance per pixel under a light: Y of (L ⊙ T) over Y of L, through
 // the model's light matrix (Y of each channel under the light).

@@ -29,6 +29,7 @@
 #include "renderers/registry.h"
 #include "spectral/atomic_file.h"
 #include "spectral/colorimetry.h"
+#include "spectral/elapsed.h"
 #include "spectral/error.h"
 #include "spectral/light_mixer.h"
 #include "spectral/post_illumination.h"
@@ -37,14 +38,6 @@
 
 namespace svr {
 namespace fs = std::filesystem;
-
-namespace {
-
-double msSince(std::chrono::steady_clock::time_point t0) {
-  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
-}
-
-}  // namespace
 
 namespace {
 

@@ -12,6 +12,7 @@
 #include "harness/view/standalone_page.h"
 #include "renderers/core/scene_render.h"
 #include "spectral/atomic_file.h"
+#include "spectral/elapsed.h"
 #include "spectral/error.h"
 #include "spectral/post_illumination.h"
 
@@ -19,10 +20,6 @@ namespace svr {
 namespace fs = std::filesystem;
 
 namespace {
-
-double msSince(std::chrono::steady_clock::time_point t0) {
-  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
-}
 
 // A light or mix name as a file name: letters, digits, '-', '_' and '.' survive.
 std::string fileStem(const std::string& name) {

@@ -9,7 +9,6 @@
 
 #include "harness/compare_command.h"
 #include "python/bindings.h"
-#include "spectral/text_file.h"
 
 namespace svr::python {
 namespace {
@@ -50,8 +49,7 @@ py::object compare(const PyScene& s, std::vector<std::string> renderers,
   std::string report;
   {
     py::gil_scoped_release released;
-    runComparison(*s.scene, o);
-    report = readTextFile((std::filesystem::path(o.out_dir) / "report.json").string(), "report");
+    report = runComparison(*s.scene, o).report.dump();
   }
   return jsonToPython(report);
 }

@@ -47,9 +47,11 @@ Spectrum lightOf(const RenderSession& s, const py::object& light) {
         "relight: a light is a name, {{name: weight}} or {} values on {}", grid.count,
         grid.describe()));
   const Eigen::VectorXd v = Eigen::Map<const Eigen::VectorXd>(values.data(), grid.count);
-  if (!v.allFinite() || v.minCoeff() < 0)
-    throw py::value_error("relight: a light's values must be finite and ≥ 0");
-  return s.ownLight(Spectrum(grid, v), "relight");
+  try {
+    return s.ownLight(Spectrum(grid, v), "relight");  // checks the values
+  } catch (const Error& e) {
+    throw py::value_error(e.what());  // a bad argument, not a bad file
+  }
 }
 
 py::array relight(const PyImage& im, const py::object& light, bool linear, py::object out) {

@@ -9,6 +9,7 @@
 
 #include "python/bindings.h"
 #include "python/render_call.h"
+#include "renderers/core/scene_render.h"
 #include "spectral/json_reader.h"
 
 namespace svr::python {
@@ -57,7 +58,6 @@ py::object render(const PyScene& s, const std::string& renderer, const std::stri
   settings.width = width;
   settings.height = height;
   settings.options = optionAssignments(options);
-  settings.data_dir = s.spectra->data_dir;
   std::shared_ptr<RenderSession> session;
   ReleasedCall call(progress);
   call.run([&](const ProgressFn& report, const std::atomic<bool>* stop) {
@@ -104,14 +104,9 @@ void bindScene(py::module_& m) {
                              [](const PyScene& s) {
                                return PyVolume{std::make_shared<const Volume>(s.scene->volume)};
                              })
-      .def_property_readonly("lights",
-                             [](const PyScene& s) {
-                               std::vector<std::string> names;
-                               for (const auto& l : s.scene->lights) names.push_back(l.name);
-                               for (const auto& x : s.scene->mixes) names.push_back(x.name);
-                               return names;
-                             },
-                             "The scene's lights, then its mixes, by name.")
+      .def_property_readonly(
+          "lights", [](const PyScene& s) { return sceneIlluminationNames(*s.scene); },
+          "The scene's lights, then its mixes, by name.")
       .def("__repr__", [](const PyScene& s) {
         return fmt::format("<svr.Scene {} {}×{} {}>", s.source, s.scene->width, s.scene->height,
                            s.scene->volume_source);

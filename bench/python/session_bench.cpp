@@ -16,13 +16,10 @@
 
 #include "api/render_session.h"
 #include "spectral/data_dir.h"
+#include "spectral/elapsed.h"
 #include "spectral/post_illumination.h"
 
 namespace {
-
-double msSince(std::chrono::steady_clock::time_point t0) {
-  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
-}
 
 template <class Fn>
 double medianMs(int runs, Fn&& fn) {
@@ -30,7 +27,7 @@ double medianMs(int runs, Fn&& fn) {
   for (int i = 0; i < runs; ++i) {
     const auto t0 = std::chrono::steady_clock::now();
     fn();
-    ms.push_back(msSince(t0));
+    ms.push_back(svr::msSince(t0));
   }
   std::nth_element(ms.begin(), ms.begin() + ms.size() / 2, ms.end());
   return ms[ms.size() / 2];

@@ -5,17 +5,10 @@
 #include <algorithm>
 
 #include "harness/mpi/mpi_check.h"
+#include "spectral/elapsed.h"
 #include "spectral/error.h"
 
 namespace svr {
-namespace {
-
-double msSince(std::chrono::steady_clock::time_point t0) {
-  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
-}
-
-}  // namespace
-
 MpiFrontTransmittance::MpiFrontTransmittance(MPI_Comm comm, const std::vector<KdBrick>& bricks,
                                              const std::vector<int>& depth_order,
                                              const Dims& whole, const glm::dvec3& spacing,

@@ -39,4 +39,11 @@ std::vector<Spectrum> sceneIlluminations(const Scene& scene, const Observer& obs
   return out;
 }
 
+std::vector<std::string> sceneIlluminationNames(const Scene& scene) {
+  std::vector<std::string> names;
+  for (const auto& l : scene.lights) names.push_back(l.name);
+  for (const auto& mix : scene.mixes) names.push_back(mix.name);
+  return names;
+}
+
 }  // namespace svr

@@ -22,5 +22,7 @@ RenderRequest sceneRequest(const Scene& scene, const ClassifiedVolume& classifie
 // What the scene is relit under: each light at unit luminance, then each mix as the weighted
 // sum of those (light matrices are linear in the light), in scene.lights then scene.mixes order.
 std::vector<Spectrum> sceneIlluminations(const Scene& scene, const Observer& observer);
+// Their names, in the same order: the lights', then the mixes'.
+std::vector<std::string> sceneIlluminationNames(const Scene& scene);
 
 }  // namespace svr
