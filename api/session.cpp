@@ -1,4 +1,4 @@
-// The public API's session (include/svr/svr.h): a RenderSession (api/render_session.h) behind
+// The public API's session (include/svr/svr.h): a RenderSession (harness/render_session.h) behind
 // the public types, which hold nothing but the standard library's.
 
 #include "svr/svr.h"
@@ -7,10 +7,10 @@
 
 #include <filesystem>
 
-#include "api/render_session.h"
+#include "harness/render_session.h"
 #include "harness/image_files.h"
-#include "spectral/data_dir.h"
-#include "spectral/json_reader.h"
+#include "base/data_dir.h"
+#include "base/json_reader.h"
 
 namespace svr {
 

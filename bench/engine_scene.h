@@ -6,12 +6,12 @@
 #include <string>
 #include <utility>
 
-#include "renderers/core/classification.h"
-#include "renderers/core/scene.h"
-#include "renderers/scene_model.h"
-#include "renderers/core/scene_render.h"
+#include "renderers/classification/classification.h"
+#include "renderers/scene/scene.h"
+#include "renderers/model/scene_model.h"
+#include "renderers/render/scene_render.h"
 #include "spectral/colorimetry.h"
-#include "spectral/data_dir.h"
+#include "base/data_dir.h"
 #include "spectral/spectrum_library.h"
 
 namespace svr {

@@ -5,12 +5,12 @@
 #include <benchmark/benchmark.h>
 #include <fmt/format.h>
 
-#include "renderers/core/classification.h"
-#include "renderers/core/scene.h"
-#include "renderers/scene_model.h"
+#include "renderers/classification/classification.h"
+#include "renderers/scene/scene.h"
+#include "renderers/model/scene_model.h"
 #include "renderers/registry.h"
 #include "spectral/colorimetry.h"
-#include "spectral/data_dir.h"
+#include "base/data_dir.h"
 #include "bench/engine_scene.h"
 
 namespace svr {

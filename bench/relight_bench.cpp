@@ -16,7 +16,7 @@
 
 #include "spectral/colorimetry.h"
 #include "spectral/componentwise_model.h"
-#include "spectral/data_dir.h"
+#include "base/data_dir.h"
 #include "spectral/post_illumination.h"
 #include "spectral/spectrum_library.h"
 #include "renderers/registry.h"

@@ -13,14 +13,14 @@
 #include <benchmark/benchmark.h>
 #include <fmt/format.h>
 
-#include "renderers/core/classification.h"
-#include "renderers/core/scene.h"
-#include "renderers/scene_model.h"
+#include "renderers/classification/classification.h"
+#include "renderers/scene/scene.h"
+#include "renderers/model/scene_model.h"
 #include "renderers/raycast/raycast_renderer.h"
 #include "renderers/shearwarp/rle_volume.h"
 #include "renderers/shearwarp/shearwarp_renderer.h"
 #include "spectral/colorimetry.h"
-#include "spectral/data_dir.h"
+#include "base/data_dir.h"
 #include "bench/engine_scene.h"
 
 namespace svr {

@@ -6,7 +6,7 @@
 #   lib/…/pkgconfig/svr.pc          pkg-config --cflags --libs svr
 #   share/svr/                      spectra, scenes, palettes, volumes; scripts/ for the charts
 #   share/doc/svr/                  README.md and docs/
-# An installed svr finds share/svr relative to itself (spectral/data_dir.h).
+# An installed svr finds share/svr relative to itself (base/data_dir.h).
 
 include(CMakePackageConfigHelpers)
 

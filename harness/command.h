@@ -46,7 +46,7 @@ void runOnParse(App& sub, CommandContext& context, std::shared_ptr<Options> opti
 }
 
 // --no-cache on a command that loads scenes: train models and design palettes afresh, and
-// neither read nor write the disk cache (spectral/disk_cache.h).
+// neither read nor write the disk cache (base/disk_cache.h).
 void addCacheFlag(CLI::App& sub);
 
 // An image size given on the command line: the scene file's image.width/height range, checked

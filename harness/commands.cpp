@@ -2,8 +2,8 @@
 #include <fmt/format.h>
 
 #include "harness/command.h"
-#include "spectral/disk_cache.h"
-#include "spectral/error.h"
+#include "base/disk_cache.h"
+#include "base/error.h"
 
 // The list of commands, in the order `svr --help` shows them. Each NAME is defined by
 // harness/NAME_command.cpp as svr::commands::NAME().

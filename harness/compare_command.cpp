@@ -13,9 +13,9 @@
 #include "harness/image_files.h"
 #include "harness/progress.h"
 #include "renderers/registry.h"
-#include "spectral/atomic_file.h"
-#include "spectral/data_dir.h"
-#include "spectral/error.h"
+#include "base/atomic_file.h"
+#include "base/data_dir.h"
+#include "base/error.h"
 #include "spectral/post_illumination.h"
 
 namespace svr {
@@ -167,7 +167,7 @@ CompareSummary runComparison(Scene scene, const CompareOptions& o) {
   if (o.width > 0) scene.width = o.width;
   if (o.height > 0) scene.height = o.height;
   const std::vector<std::string> renderers = o.renderers.empty() ? rendererNames() : o.renderers;
-  for (const auto& r : renderers) makeRenderer(r);  // unknown names fail before any work
+  for (const auto& r : renderers) backendEntry(r);  // unknown names fail before any work
   checkRendererOptions(scene.renderer_options, o.scene + ": render.options");
   const std::vector<std::string> models =
       o.models.empty() ? std::vector<std::string>{"rgb", "factor:3", "factor:4", "factor:6",

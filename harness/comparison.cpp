@@ -4,13 +4,13 @@
 
 #include <chrono>
 
-#include "renderers/core/classification.h"
-#include "renderers/core/scene_render.h"
-#include "renderers/scene_model.h"
+#include "renderers/classification/classification.h"
+#include "renderers/render/scene_render.h"
+#include "renderers/model/scene_model.h"
 #include "renderers/registry.h"
 #include "spectral/componentwise_model.h"
-#include "spectral/elapsed.h"
-#include "spectral/error.h"
+#include "base/elapsed.h"
+#include "base/error.h"
 #include "spectral/image_difference.h"
 #include "spectral/post_illumination.h"
 
@@ -66,9 +66,8 @@ std::string RunSpec::label() const {
 
 ComparisonSession::ComparisonSession(Scene scene, const std::string& data_dir)
     : scene_(std::move(scene)),
-      library_(SpectrumLibrary::load(data_dir, WavelengthGrid::standard())),
-      observer_(Observer::cie1931(data_dir, WavelengthGrid::standard())) {
-  const std::vector<Spectrum> spectra = sceneIlluminations(scene_, observer_);
+      spectra_(std::make_shared<const SessionSpectra>(data_dir)) {
+  const std::vector<Spectrum> spectra = sceneIlluminations(scene_, spectra_->observer);
   for (std::size_t i = 0; i < spectra.size(); ++i)
     illuminations_.push_back({i < scene_.lights.size()
                                   ? scene_.lights[i].name
@@ -87,26 +86,20 @@ ComparisonSession::Rendered ComparisonSession::render(const std::string& rendere
                                                       const nlohmann::json& options,
                                                       double step_voxels, double termination,
                                                       bool steady) {
-  const auto renderer = makeRenderer(renderer_name);
   Scene scene = scene_;
   scene.step_voxels = step_voxels;
-  const auto t_classify = std::chrono::steady_clock::now();
-  SceneModel chosen = makeSceneModel(model, scene, observer_);
-  const ClassifiedVolume cv = classifyScene(scene, *chosen.model);
-  const double classify_ms = msSince(t_classify);
-  RenderRequest request = sceneRequest(scene, cv);
-  request.termination = termination;
+  scene.termination = termination;
   for (const auto& [backend, values] : options.items())
-    for (const auto& [key, value] : values.items()) request.options[backend][key] = value;
-  const auto t_render = std::chrono::steady_clock::now();
-  LightIndependentImage image = renderer->render(request, nullptr);
-  const double first_ms = msSince(t_render);
-  double steady_ms = first_ms;
-  if (steady) {
-    const auto t_again = std::chrono::steady_clock::now();
-    image = renderer->render(request, nullptr);
-    steady_ms = msSince(t_again);
-  }
+    for (const auto& [key, value] : values.items()) scene.renderer_options[backend][key] = value;
+  FrameSettings settings;
+  settings.renderer = renderer_name;
+  settings.model = model;
+  RenderSession session(spectra_, std::move(scene), settings, "comparison");
+  const double classify_ms = session.timings().model + session.timings().classify;
+  const double first_ms = session.render();
+  const double steady_ms = steady ? session.render() : first_ms;
+  LightIndependentImage image = session.image();
+  SceneModel chosen = session.takeModel();
   return {std::move(chosen), std::move(image), classify_ms, first_ms, steady_ms};
 }
 
@@ -149,7 +142,7 @@ RunResult ComparisonSession::run(const RunSpec& spec) {
   for (const auto& ill : illuminations_) {
     LightResult lr;
     lr.light = ill.name;
-    const Xyz white = observer_.xyz(ill.spectrum);
+    const Xyz white = spectra_->observer.xyz(ill.spectrum);
     lr.relit.resize(3 * r.image.pixels());
     // Best of a few: a relight is short enough that one sample mostly measures thread wake-up.
     double best = INFINITY;

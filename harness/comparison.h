@@ -12,9 +12,10 @@
 #include <string>
 #include <vector>
 
-#include "renderers/core/scene.h"
+#include "harness/render_session.h"
+#include "renderers/scene/scene.h"
 #include "renderers/registry.h"
-#include "renderers/scene_model.h"
+#include "renderers/model/scene_model.h"
 #include "spectral/colorimetry.h"
 #include "spectral/colour_model.h"
 #include "spectral/light_independent_image.h"
@@ -97,8 +98,7 @@ class ComparisonSession {
                   bool steady = false);
 
   Scene scene_;
-  SpectrumLibrary library_;
-  Observer observer_;
+  std::shared_ptr<const SessionSpectra> spectra_;
   std::vector<SceneIllumination> illuminations_;
   std::unique_ptr<ColourModel> reference_model_;
   LightIndependentImage reference_;

@@ -11,8 +11,8 @@
 #include "harness/command.h"
 #include "harness/compare_command.h"
 #include "renderers/registry.h"
-#include "spectral/atomic_file.h"
-#include "spectral/error.h"
+#include "base/atomic_file.h"
+#include "base/error.h"
 
 namespace svr {
 namespace fs = std::filesystem;

@@ -12,11 +12,11 @@
 
 #include "harness/command.h"
 #include "harness/image_files.h"
-#include "spectral/atomic_file.h"
+#include "base/atomic_file.h"
 #include "spectral/colorimetry.h"
 #include "spectral/design_solver.h"
-#include "spectral/data_dir.h"
-#include "spectral/error.h"
+#include "base/data_dir.h"
+#include "base/error.h"
 #include "spectral/spectrum_library.h"
 
 

@@ -11,9 +11,9 @@
 #include <fstream>
 #include <map>
 
-#include "renderers/core/memory_budget.h"
-#include "spectral/atomic_file.h"
-#include "spectral/error.h"
+#include "renderers/volume/memory_budget.h"
+#include "base/atomic_file.h"
+#include "base/error.h"
 
 namespace svr {
 namespace fs = std::filesystem;

@@ -6,8 +6,8 @@
 #include <memory>
 
 #include "harness/command.h"
-#include "renderers/core/volume_description.h"
-#include "spectral/error.h"
+#include "renderers/volume/volume_description.h"
+#include "base/error.h"
 
 namespace svr {
 

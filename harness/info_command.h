@@ -6,7 +6,7 @@
 #include <optional>
 #include <string>
 
-#include "renderers/core/volume_io.h"
+#include "renderers/volume/volume_io.h"
 
 namespace svr {
 

@@ -11,10 +11,10 @@
 
 #include "harness/command.h"
 #include "harness/progress.h"
-#include "spectral/atomic_file.h"
+#include "base/atomic_file.h"
 #include "spectral/colorimetry.h"
 #include "spectral/componentwise_model.h"
-#include "spectral/error.h"
+#include "base/error.h"
 #include "spectral/factor_training.h"
 #include "spectral/model_error.h"
 #include "spectral/palette.h"

@@ -13,7 +13,7 @@
 #include "harness/image_files.h"
 #include "renderers/registry.h"
 #include "spectral/colorimetry.h"
-#include "spectral/error.h"
+#include "base/error.h"
 #include "spectral/light_mixer.h"
 #include "spectral/post_illumination.h"
 #include "spectral/spectrum_library.h"

@@ -27,7 +27,7 @@ struct RenderOptions {
   bool steady = false;  // render the view again and report that frame's time too
   // A distributed render (svr-mpi): this process's part in it; null for svr render.
   RenderDistribution* distribution = nullptr;
-  // How its kd-split shares the volume out: "work" (estimated, core/work_estimate.h, for
+  // How its kd-split shares the volume out: "work" (estimated, render/work_estimate.h, for
   // backends that pass the transmittance in front on) or "voxels".
   std::string balance = "work";
 };

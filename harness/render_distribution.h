@@ -10,9 +10,9 @@
 #include <nlohmann/json.hpp>
 #include <utility>
 
-#include "renderers/core/brick_box.h"
-#include "renderers/core/camera.h"
-#include "renderers/core/front_transmittance.h"
+#include "renderers/volume/brick_box.h"
+#include "renderers/scene/camera.h"
+#include "renderers/render/front_transmittance.h"
 #include "spectral/light_independent_image.h"
 
 namespace svr {

@@ -10,10 +10,10 @@
 #include "harness/interrupt.h"
 #include "harness/view/page_data.h"
 #include "harness/view/standalone_page.h"
-#include "renderers/core/scene_render.h"
-#include "spectral/atomic_file.h"
-#include "spectral/elapsed.h"
-#include "spectral/error.h"
+#include "renderers/render/scene_render.h"
+#include "base/atomic_file.h"
+#include "base/elapsed.h"
+#include "base/error.h"
 #include "spectral/post_illumination.h"
 
 namespace svr {

@@ -9,9 +9,9 @@
 #include <vector>
 
 #include "harness/render_command.h"
-#include "renderers/core/renderer.h"
-#include "renderers/core/scene.h"
-#include "renderers/scene_model.h"
+#include "renderers/render/renderer.h"
+#include "renderers/scene/scene.h"
+#include "renderers/model/scene_model.h"
 #include "spectral/colorimetry.h"
 #include "spectral/light_independent_image.h"
 

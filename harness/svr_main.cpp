@@ -8,8 +8,8 @@
 #include "harness/build_info.h"
 #include "harness/command.h"
 #include "harness/interrupt.h"
-#include "spectral/data_dir.h"
-#include "spectral/error.h"
+#include "base/data_dir.h"
+#include "base/error.h"
 
 int main(int argc, char** argv) {
   CLI::App app{"svr — spectral volume rendering with post-illumination (Bergner et al. 2002)"};

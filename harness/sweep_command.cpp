@@ -14,8 +14,8 @@
 #include "harness/comparison.h"
 #include "harness/progress.h"
 #include "renderers/registry.h"
-#include "spectral/atomic_file.h"
-#include "spectral/error.h"
+#include "base/atomic_file.h"
+#include "base/error.h"
 
 namespace svr {
 namespace fs = std::filesystem;
@@ -85,7 +85,7 @@ SweepResult runSweepStudy(const SweepOptions& o) {
   base.width = o.width;
   base.height = o.height;
   const std::vector<std::string> renderers = o.renderers.empty() ? rendererNames() : o.renderers;
-  for (const auto& r : renderers) makeRenderer(r);
+  for (const auto& r : renderers) backendEntry(r);  // unknown names fail before any work
   SweepResult result;
   result.param = range.name;
   for (double v = range.from; v <= range.to + 1e-9 * std::max(1.0, std::abs(range.to)); v += range.step)

@@ -13,9 +13,9 @@
 #include <unistd.h>
 
 #include "harness/command.h"
-#include "renderers/core/memory_budget.h"
+#include "renderers/volume/memory_budget.h"
 #include "renderers/registry.h"
-#include "spectral/error.h"
+#include "base/error.h"
 
 #ifdef SVR_HAVE_VIEWER
 #include "harness/view/request_guard.h"

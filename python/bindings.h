@@ -7,7 +7,7 @@
 #include <memory>
 #include <string>
 
-#include "api/render_session.h"
+#include "harness/render_session.h"
 
 namespace svr::python {
 

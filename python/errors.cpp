@@ -3,7 +3,7 @@
 // KeyboardInterrupt that stopped it (render_call.h), never svr.Cancelled on its own.
 
 #include "python/bindings.h"
-#include "spectral/error.h"
+#include "base/error.h"
 
 namespace svr::python {
 

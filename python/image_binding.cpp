@@ -10,7 +10,7 @@
 
 #include "harness/image_files.h"
 #include "python/bindings.h"
-#include "spectral/error.h"
+#include "base/error.h"
 #include "spectral/image_difference.h"
 
 namespace svr::python {

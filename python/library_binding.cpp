@@ -7,7 +7,7 @@
 
 #include "python/bindings.h"
 #include "renderers/registry.h"
-#include "spectral/error.h"
+#include "base/error.h"
 
 namespace svr::python {
 namespace {

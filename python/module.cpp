@@ -9,7 +9,7 @@
 #include <nlohmann/json.hpp>
 
 #include "python/bindings.h"
-#include "spectral/data_dir.h"
+#include "base/data_dir.h"
 #include "svr/svr.h"
 
 namespace svr::python {

@@ -2,7 +2,7 @@
 // Long calls into the library from Python (render, compare): the GIL released for their whole
 // length, so other Python threads run and two renders run at once; Ctrl-C and the caller's
 // progress callback handled on the calling thread, which is the one a backend reports progress
-// from (renderers/core/progress_counter.h). A pending KeyboardInterrupt, or an exception from
+// from (renderers/render/progress_counter.h). A pending KeyboardInterrupt, or an exception from
 // the callback, sets the render's stop flag; the backend skips its remaining work, and the
 // Python exception is raised once the call has unwound.
 
@@ -12,8 +12,8 @@
 #include <chrono>
 #include <optional>
 
-#include "renderers/core/progress_counter.h"
-#include "spectral/error.h"
+#include "renderers/render/progress_counter.h"
+#include "base/error.h"
 
 namespace svr::python {
 

@@ -9,8 +9,8 @@
 
 #include "python/bindings.h"
 #include "python/render_call.h"
-#include "renderers/core/scene_render.h"
-#include "spectral/json_reader.h"
+#include "renderers/render/scene_render.h"
+#include "base/json_reader.h"
 
 namespace svr::python {
 namespace {

@@ -13,8 +13,8 @@
 #include <cstring>
 
 #include "python/bindings.h"
-#include "renderers/core/memory_budget.h"
-#include "renderers/core/volume.h"
+#include "renderers/volume/memory_budget.h"
+#include "renderers/volume/volume.h"
 
 namespace svr::python {
 namespace {

@@ -5,7 +5,7 @@
 
 #include <algorithm>
 
-#include "spectral/error.h"
+#include "base/error.h"
 
 // The list of backends. Each NAME is a folder renderers/NAME/ whose CMakeLists.txt adds its
 // sources (or says why it cannot be built) and which defines svr::backends::NAME().

@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "renderers/core/backend_entry.h"
+#include "renderers/render/backend_entry.h"
 
 namespace svr {
 

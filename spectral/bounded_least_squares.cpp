@@ -7,7 +7,7 @@
 #include <cmath>
 #include <vector>
 
-#include "spectral/error.h"
+#include "base/error.h"
 
 namespace svr {
 

@@ -6,11 +6,11 @@
 #include <optional>
 #include <nlohmann/json.hpp>
 
-#include "spectral/atomic_file.h"
+#include "base/atomic_file.h"
 #include "spectral/colorimetry.h"
 #include "spectral/componentwise_model.h"
-#include "spectral/error.h"
-#include "spectral/json_reader.h"
+#include "base/error.h"
+#include "base/json_reader.h"
 #include "spectral/linear_model.h"
 
 namespace svr {

@@ -6,8 +6,8 @@
 #include <cmath>
 #include <sstream>
 
-#include "spectral/error.h"
-#include "spectral/text_file.h"
+#include "base/error.h"
+#include "base/text_file.h"
 
 namespace svr {
 namespace {

@@ -5,8 +5,8 @@
 #include <cmath>
 #include <map>
 
-#include "spectral/error.h"
-#include "spectral/json_reader.h"
+#include "base/error.h"
+#include "base/json_reader.h"
 #include "spectral/spectrum_spec.h"
 
 namespace svr {

@@ -6,7 +6,7 @@
 #include <cmath>
 
 #include "spectral/bounded_least_squares.h"
-#include "spectral/error.h"
+#include "base/error.h"
 
 namespace svr {
 

@@ -8,7 +8,7 @@
 #include <optional>
 #include <random>
 
-#include "spectral/error.h"
+#include "base/error.h"
 
 namespace svr {
 

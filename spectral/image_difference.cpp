@@ -5,7 +5,7 @@
 #include <cmath>
 
 #include "spectral/colorimetry.h"
-#include "spectral/error.h"
+#include "base/error.h"
 #include "spectral/post_illumination.h"
 
 namespace svr {

@@ -5,7 +5,7 @@
 #include <bit>
 #include <cstring>
 
-#include "spectral/error.h"
+#include "base/error.h"
 
 namespace svr {
 

@@ -5,7 +5,7 @@
 #include <cmath>
 #include <numbers>
 
-#include "spectral/error.h"
+#include "base/error.h"
 
 namespace svr {
 

@@ -4,7 +4,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "spectral/error.h"
+#include "base/error.h"
 
 namespace svr {
 

@@ -6,7 +6,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "spectral/error.h"
+#include "base/error.h"
 
 namespace svr {
 

@@ -2,7 +2,7 @@
 
 #include <fmt/format.h>
 
-#include "spectral/json_reader.h"
+#include "base/json_reader.h"
 #include "spectral/spectrum_spec.h"
 
 namespace svr {

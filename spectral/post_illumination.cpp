@@ -8,7 +8,7 @@
 #include <vector>
 
 #include "spectral/colorimetry.h"
-#include "spectral/error.h"
+#include "base/error.h"
 
 namespace svr {
 

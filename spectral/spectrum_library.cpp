@@ -7,7 +7,7 @@
 #include <cctype>
 
 #include "spectral/csv_table.h"
-#include "spectral/error.h"
+#include "base/error.h"
 
 namespace svr {
 

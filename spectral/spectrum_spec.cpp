@@ -3,7 +3,7 @@
 #include <fmt/format.h>
 
 #include "spectral/csv_table.h"
-#include "spectral/error.h"
+#include "base/error.h"
 
 namespace svr {
 

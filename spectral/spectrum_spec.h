@@ -9,7 +9,7 @@
 
 #include <filesystem>
 
-#include "spectral/json_reader.h"
+#include "base/json_reader.h"
 #include "spectral/spectrum_library.h"
 
 namespace svr {

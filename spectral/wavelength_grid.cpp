@@ -4,7 +4,7 @@
 
 #include <cmath>
 
-#include "spectral/error.h"
+#include "base/error.h"
 
 namespace svr {
 

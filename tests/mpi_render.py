@@ -8,7 +8,7 @@ brick stops every rank with that rank's message and leaves no output.
 Usage: mpi_render.py SVR SVR_MPI DATA_DIR
 Images are compared with idiff (openimageio-tools) to 2e-5 absolute: the rounding of the
 compositing order. Raycast bricks take the transmittance in front of them from the ranks in
-front (renderers/core/front_transmittance.h), so they stop their rays where the whole render
+front (renderers/render/front_transmittance.h), so they stop their rays where the whole render
 does and its scenes keep early termination on; shear-warp bricks cannot see it and may go on
 where the whole render stopped (within ε; Bricks.EarlyTerminationDiffersByAtMostItsThreshold
 bounds that), so its scenes turn early termination off.

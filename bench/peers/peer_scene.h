@@ -10,8 +10,8 @@
 #include <vector>
 
 #include "bench/engine_scene.h"
-#include "renderers/core/classified_sample.h"
-#include "renderers/core/renderer.h"
+#include "renderers/classification/classified_sample.h"
+#include "renderers/render/renderer.h"
 
 namespace svr::peers {
 

@@ -30,7 +30,7 @@
 
 #include "bench/peers/peer_scene.h"
 #include "renderers/registry.h"
-#include "spectral/error.h"
+#include "base/error.h"
 
 namespace svr::peers {
 namespace {

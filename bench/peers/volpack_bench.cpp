@@ -41,7 +41,7 @@
 #include "bench/peers/peer_scene.h"
 #include "renderers/shearwarp/rle_volume.h"
 #include "renderers/shearwarp/shearwarp_renderer.h"
-#include "spectral/error.h"
+#include "base/error.h"
 
 namespace svr::peers {
 namespace {

@@ -14,9 +14,9 @@
 #include <cstdlib>
 #include <vector>
 
-#include "api/render_session.h"
-#include "spectral/data_dir.h"
-#include "spectral/elapsed.h"
+#include "harness/render_session.h"
+#include "base/data_dir.h"
+#include "base/elapsed.h"
 #include "spectral/post_illumination.h"
 
 namespace {

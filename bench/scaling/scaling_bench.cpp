@@ -28,7 +28,7 @@
 
 #include "bench/engine_scene.h"
 #include "renderers/registry.h"
-#include "spectral/error.h"
+#include "base/error.h"
 
 namespace svr {
 namespace {

@@ -7,7 +7,7 @@
 
 #include <string>
 
-#include "spectral/error.h"
+#include "base/error.h"
 
 namespace svr {
 

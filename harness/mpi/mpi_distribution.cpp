@@ -7,7 +7,8 @@
 
 #include "harness/mpi/mpi_check.h"
 #include "harness/mpi/mpi_front_transmittance.h"
-#include "renderers/core/image_compositing.h"
+#include "renderers/render/brick_order.h"
+#include "renderers/render/image_compositing.h"
 
 namespace svr {
 namespace {

@@ -16,8 +16,8 @@
 #include <vector>
 
 #include "harness/render_distribution.h"
-#include "renderers/core/volume_brick.h"
-#include "spectral/error.h"
+#include "renderers/volume/volume_brick.h"
+#include "base/error.h"
 
 namespace svr {
 

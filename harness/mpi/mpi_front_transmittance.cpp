@@ -5,8 +5,8 @@
 #include <algorithm>
 
 #include "harness/mpi/mpi_check.h"
-#include "spectral/elapsed.h"
-#include "spectral/error.h"
+#include "base/elapsed.h"
+#include "base/error.h"
 
 namespace svr {
 MpiFrontTransmittance::MpiFrontTransmittance(MPI_Comm comm, const std::vector<KdBrick>& bricks,

@@ -1,5 +1,5 @@
 #pragma once
-// FrontTransmittance over MPI (renderers/core/front_transmittance.h): each rank renders the
+// FrontTransmittance over MPI (renderers/render/front_transmittance.h): each rank renders the
 // image blocks its brick's footprint covers, receives over each block the own T of every brick
 // in front whose footprint covers it, and sends its own T to every brick behind whose footprint
 // covers it. Only ranks in front are waited on, so the dependencies run one way and the ranks
@@ -14,8 +14,8 @@
 #include <chrono>
 #include <vector>
 
-#include "renderers/core/front_transmittance.h"
-#include "renderers/core/volume_brick.h"
+#include "renderers/render/front_transmittance.h"
+#include "renderers/volume/volume_brick.h"
 
 namespace svr {
 

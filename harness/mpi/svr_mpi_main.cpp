@@ -13,8 +13,8 @@
 #include "harness/command.h"
 #include "harness/interrupt.h"
 #include "harness/mpi/mpi_distribution.h"
-#include "spectral/data_dir.h"
-#include "spectral/error.h"
+#include "base/data_dir.h"
+#include "base/error.h"
 
 namespace {
 

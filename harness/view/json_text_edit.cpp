@@ -4,7 +4,7 @@
 
 #include <algorithm>
 
-#include "spectral/error.h"
+#include "base/error.h"
 
 namespace svr {
 

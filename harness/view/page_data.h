@@ -9,9 +9,9 @@
 #include <optional>
 #include <string>
 
-#include "renderers/core/camera.h"
-#include "renderers/core/scene.h"
-#include "renderers/scene_model.h"
+#include "renderers/scene/camera.h"
+#include "renderers/scene/scene.h"
+#include "renderers/model/scene_model.h"
 #include "spectral/colorimetry.h"
 #include "spectral/light_independent_image.h"
 

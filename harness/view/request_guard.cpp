@@ -12,7 +12,7 @@
 #include <algorithm>
 #include <cctype>
 
-#include "spectral/error.h"
+#include "base/error.h"
 
 namespace svr {
 

@@ -5,7 +5,7 @@
 
 #include <vector>
 
-#include "spectral/error.h"
+#include "base/error.h"
 #include "harness/view/frame_format.h"
 #include "harness/view/web_assets.h"
 

@@ -8,7 +8,7 @@
 #include <optional>
 #include <sstream>
 
-#include "spectral/error.h"
+#include "base/error.h"
 #include "spectral/light_mixer.h"
 #include "harness/view/frame_format.h"
 #include "harness/view/view_params.h"

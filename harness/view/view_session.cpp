@@ -8,12 +8,12 @@
 #include <cstring>
 #include <regex>
 
-#include "renderers/core/scene_render.h"
+#include "renderers/render/scene_render.h"
 #include "renderers/registry.h"
-#include "spectral/atomic_file.h"
-#include "spectral/error.h"
-#include "spectral/json_reader.h"
-#include "spectral/text_file.h"
+#include "base/atomic_file.h"
+#include "base/error.h"
+#include "base/json_reader.h"
+#include "base/text_file.h"
 #include "harness/view/json_text_edit.h"
 
 namespace svr {
@@ -21,50 +21,47 @@ namespace svr {
 ViewSession::ViewSession(const ViewOptions& options)
     : options_(options),
       // Read once: the scene is parsed from the very text a saved mix is later checked against.
-      scene_text_(readTextFile(options.scene, "JSON file")),
-      grid_(WavelengthGrid::standard()),
-      library_(SpectrumLibrary::load(options.data_dir, grid_)),
-      observer_(Observer::cie1931(options.data_dir, grid_)),
-      scene_(parseScene(JsonReader::parse(scene_text_, options.scene), options.scene, library_,
-                        VolumeLoadOptions{.memory_budget = options.memory_budget})) {
-  renderer_ = makeRenderer(options.renderer);
-  checkRendererOptions(scene_.renderer_options, options.scene + ": render.options");
-  for (const auto& option : options.options)
-    applyOptionAssignment(scene_.renderer_options, option, "--option");
-  model_ = makeSceneModel(options.model.empty() ? scene_.model : options.model, scene_, observer_);
-  classified_ = std::make_unique<ClassifiedVolume>(classifyScene(scene_, *model_.model));
-  const ColourModel& model = *model_.model;
-  const int planes = model.imageChannels() + classified_->t_channels;
+      scene_text_(readTextFile(options.scene, "JSON file")) {
+  auto spectra = std::make_shared<const SessionSpectra>(options.data_dir);
+  Scene loaded = parseScene(JsonReader::parse(scene_text_, options.scene), options.scene,
+                            spectra->library,
+                            VolumeLoadOptions{.memory_budget = options.memory_budget});
+  FrameSettings settings;
+  settings.renderer = options.renderer;
+  settings.model = options.model;
+  settings.options = options.options;
+  settings.memory_budget = options.memory_budget;
+  session_ = std::make_unique<RenderSession>(std::move(spectra), std::move(loaded), settings,
+                                             options.scene);
+  const ColourModel& model = *session_->model().model;
+  const int planes = model.imageChannels() + classified().t_channels;
   if (planes > kMaxPlanes)
     throw Error(fmt::format("view: model {} makes {} image planes; the viewer relights at most {}",
                             model.name(), planes, kMaxPlanes));
-  initial_view_ = orbitViewOf(scene_.camera);
-  RenderRequest first = sceneRequest(scene_, *classified_);
-  first.memory_budget = options.memory_budget;
-  first.camera = orbitCamera(scene_.camera, initial_view_);
-  samples_ = chooseSamples(lightContext(), scene_, renderer_->render(first, nullptr));
+  const Scene& s = scene();
+  initial_view_ = orbitViewOf(s.camera);
+  samples_ = chooseSamples(lightContext(), s,
+                           session_->renderView(orbitCamera(s.camera, initial_view_), s.width,
+                                                s.height));
   // One tiny frame along each axis: a backend builds what it keeps per principal axis (shear-
   // warp's run-length encodings, ~0.1 s each on the engine) at the first view along it, and
   // that should not land on the first view change that crosses a diagonal.
-  for (const OrbitView axis : {OrbitView{0, 0, 1}, OrbitView{90, 0, 1}, OrbitView{0, 90, 1}}) {
-    RenderRequest warm = first;
-    warm.camera = orbitCamera(scene_.camera, axis);
-    warm.width = warm.height = 8;
-    renderer_->render(warm, nullptr);
-  }
+  for (const OrbitView axis : {OrbitView{0, 0, 1}, OrbitView{90, 0, 1}, OrbitView{0, 90, 1}})
+    session_->renderView(orbitCamera(s.camera, axis), 8, 8);
 
-  scene_info_ = pageSceneInfo(lightContext(), scene_, model_, renderer_->name(), initial_view_,
-                              samples_);
+  scene_info_ = pageSceneInfo(lightContext(), s, session_->model(), session_->renderer().name(),
+                              initial_view_, samples_);
   scene_info_["max_side"] = kMaxSide;
   scene_info_["read_only"] = options.read_only;
 }
 
 PageLightContext ViewSession::lightContext() const {
-  return {*model_.model, observer_, scene_.background, classified_->t_channels};
+  return {*session_->model().model, session_->spectra().observer, scene().background,
+          classified().t_channels};
 }
 
 nlohmann::json ViewSession::libraryLight(const std::string& name) const {
-  return pageLight(lightContext(), name, library_.get(name));
+  return pageLight(lightContext(), name, session_->spectra().library.get(name));
 }
 
 std::optional<ViewFrame> ViewSession::render(const ViewRequest& request) {
@@ -74,13 +71,9 @@ std::optional<ViewFrame> ViewSession::render(const ViewRequest& request) {
   {
     std::lock_guard lock(render_mutex_);
     if (latest_.load() != mine) return std::nullopt;  // a newer view is waiting behind this one
-    RenderRequest r = sceneRequest(scene_, *classified_);
-    r.camera = orbitCamera(scene_.camera, request.view);
-    r.memory_budget = options_.memory_budget;
-    r.width = request.width;
-    r.height = request.height;
     const auto t0 = std::chrono::steady_clock::now();
-    image = renderer_->render(r, nullptr);
+    image = session_->renderView(orbitCamera(scene().camera, request.view), request.width,
+                                 request.height);
     ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
   }
   if (latest_.load() != mine) return std::nullopt;
@@ -128,10 +121,10 @@ void ViewSession::saveMix(const std::string& name,
   const bool bare = !lights.empty() && lights.back().is_string();
   nlohmann::ordered_json mix = nlohmann::ordered_json::object();
   for (const auto& [light, w] : weights) {
-    const bool in_scene = std::any_of(scene_.lights.begin(), scene_.lights.end(),
+    const bool in_scene = std::any_of(scene().lights.begin(), scene().lights.end(),
                                       [&](const SceneLight& l) { return l.name == light; });
     if (!in_scene && !listed(light)) {
-      library_.get(light);  // an unknown name fails here, naming close ones
+      session_->spectra().library.get(light);  // an unknown name fails here, naming close ones
       const nlohmann::ordered_json entry =
           bare ? nlohmann::ordered_json(light) : nlohmann::ordered_json{{"name", light}, {"library", light}};
       text = withElementAppended(text, {"lights"}, entry, file);

@@ -18,17 +18,14 @@
 #include <string>
 #include <vector>
 
-#include "renderers/core/camera.h"
-#include "renderers/core/classification.h"
-#include "renderers/core/memory_budget.h"
-#include "renderers/core/renderer.h"
-#include "renderers/core/scene.h"
-#include "renderers/scene_model.h"
-#include "spectral/colorimetry.h"
-#include "spectral/error.h"
-#include "spectral/light_independent_image.h"
-#include "spectral/spectrum_library.h"
+#include "base/error.h"
+#include "harness/render_session.h"
 #include "harness/view/page_data.h"
+#include "renderers/classification/classification.h"
+#include "renderers/scene/camera.h"
+#include "renderers/scene/scene.h"
+#include "renderers/volume/memory_budget.h"
+#include "spectral/light_independent_image.h"
 
 namespace svr {
 
@@ -83,8 +80,8 @@ class ViewSession {
   void saveMix(const std::string& name, const std::vector<std::pair<std::string, double>>& weights);
 
   bool readOnly() const { return options_.read_only; }
-  const Scene& scene() const { return scene_; }
-  const ClassifiedVolume& classified() const { return *classified_; }
+  const Scene& scene() const { return session_->scene(); }
+  const ClassifiedVolume& classified() const { return session_->classified(); }
   const ViewOptions& options() const { return options_; }
   const OrbitView& initialView() const { return initial_view_; }
 
@@ -93,13 +90,7 @@ class ViewSession {
 
   ViewOptions options_;
   std::string scene_text_;  // the scene file as loaded, then as last saved (under file_mutex_)
-  WavelengthGrid grid_;
-  SpectrumLibrary library_;
-  Observer observer_;
-  Scene scene_;
-  SceneModel model_;
-  std::unique_ptr<ClassifiedVolume> classified_;
-  std::unique_ptr<Renderer> renderer_;
+  std::unique_ptr<RenderSession> session_;  // the scene, its model and classification, the backend
   OrbitView initial_view_;
   SampleChoice samples_;
   nlohmann::json scene_info_;

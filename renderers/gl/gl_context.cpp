@@ -5,7 +5,7 @@
 #include <cstdio>
 #include <vector>
 
-#include "spectral/error.h"
+#include "base/error.h"
 
 namespace svr::gl {
 namespace {

@@ -2,7 +2,7 @@
 
 #include <fmt/format.h>
 
-#include "spectral/error.h"
+#include "base/error.h"
 
 namespace svr::gl {
 namespace {

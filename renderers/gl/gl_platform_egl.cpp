@@ -8,7 +8,7 @@
 #include <mutex>
 
 #include "renderers/gl/gl_platform.h"
-#include "spectral/error.h"
+#include "base/error.h"
 
 #if SVR_GL_EGL
 #include <EGL/egl.h>

@@ -8,7 +8,7 @@
 #include <mutex>
 
 #include "renderers/gl/gl_platform.h"
-#include "spectral/error.h"
+#include "base/error.h"
 
 namespace svr::gl {
 namespace {

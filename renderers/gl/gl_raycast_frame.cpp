@@ -6,11 +6,11 @@
 #include <cmath>
 #include <vector>
 
-#include "renderers/core/classified_sample.h"
-#include "renderers/core/occupancy_pyramid.h"
+#include "renderers/classification/classified_sample.h"
+#include "renderers/kernels/occupancy_pyramid.h"
 #include "renderers/gl/gl_raycast_shaders.h"
 #include "renderers/gl/gl_state.h"
-#include "spectral/error.h"
+#include "base/error.h"
 
 namespace svr::gl {
 namespace {

@@ -23,9 +23,9 @@
 #include <cstdint>
 #include <memory>
 
-#include "renderers/core/derived_cache.h"
-#include "renderers/core/gradient_volume.h"
-#include "renderers/core/renderer.h"
+#include "renderers/classification/derived_cache.h"
+#include "renderers/kernels/gradient_volume.h"
+#include "renderers/render/renderer.h"
 #include "renderers/gl/gl_context.h"
 #include "renderers/gl/gl_framebuffer.h"
 #include "renderers/gl/gl_objects.h"

@@ -14,7 +14,7 @@ constexpr const char* kRaycastDeclarations = R"(
 layout(location = 0) out vec4 o_layers[NOUT];
 
 // The volume, texel centres at voxel coordinates: PRECOMPUTED, (f, ∇f) as RGBA16_SNORM decoded
-// by u_decode (core/gradient_volume.h); otherwise the shading field as R32F.
+// by u_decode (kernels/gradient_volume.h); otherwise the shading field as R32F.
 uniform sampler3D u_field;
 uniform vec4 u_decode_scale, u_decode_offset;
 #if LABELS
@@ -25,7 +25,7 @@ uniform usampler3D u_labels;
 uniform sampler2D u_table;
 uniform int u_entries;
 // Per 4³ block (ClassifiedVolume::kBlock): the log2 edge of the largest empty block around it
-// (core/occupancy_pyramid.h), 0 when it is occupied.
+// (kernels/occupancy_pyramid.h), 0 when it is occupied.
 uniform usampler3D u_empty;
 uniform int u_block_shift, u_skip;
 
@@ -35,7 +35,7 @@ uniform float u_bin_lo, u_bin_scale, u_bin_last;
 uniform int u_last_lower;  // entries − 2 (0 for a single entry)
 uniform vec3 u_half_inv_spacing;
 
-// The camera (core/camera.h's RayGenerator): right and up scaled by the half extents.
+// The camera (scene/camera.h's RayGenerator): right and up scaled by the half extents.
 uniform vec3 u_eye, u_forward, u_right, u_up, u_inv_spacing, u_centre;
 uniform int u_orthographic;
 uniform vec2 u_image;
@@ -161,7 +161,7 @@ constexpr const char* kRaycastMain = R"(void main() {
                   field(clamp(p - step_a, vec3(0.0), u_hi)).r) * u_half_inv_spacing[a];
         }
 #endif
-        // Two-sided Phong (core/classified_sample.h): full light and no highlight where the
+        // Two-sided Phong (classification/classified_sample.h): full light and no highlight where the
         // gradient vanishes.
         float shade = u_ambient + u_diffuse, highlight = 0.0;
         float len = length(g);

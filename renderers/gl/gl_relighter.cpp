@@ -8,7 +8,7 @@
 #include "renderers/gl/gl_framebuffer.h"
 #include "renderers/gl/gl_objects.h"
 #include "renderers/gl/gl_program.h"
-#include "spectral/error.h"
+#include "base/error.h"
 
 namespace svr {
 namespace {

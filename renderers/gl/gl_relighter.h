@@ -11,7 +11,7 @@
 #include <memory>
 #include <span>
 
-#include "renderers/core/relighter.h"
+#include "renderers/render/relighter.h"
 #include "spectral/light_independent_image.h"
 
 namespace svr {

@@ -2,12 +2,12 @@
 
 #include <fmt/format.h>
 
-#include "renderers/core/gradient_volume.h"
-#include "renderers/core/splat_settings.h"
+#include "renderers/kernels/gradient_volume.h"
+#include "renderers/kernels/splat_settings.h"
 #include "renderers/gl/gl_relighter.h"
 #include "renderers/gl/gl_state.h"
-#include "renderers/core/backend_entry.h"
-#include "spectral/error.h"
+#include "renderers/render/backend_entry.h"
+#include "base/error.h"
 
 namespace svr {
 namespace {

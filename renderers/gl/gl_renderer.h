@@ -14,7 +14,7 @@
 #include <memory>
 #include <mutex>
 
-#include "renderers/core/renderer.h"
+#include "renderers/render/renderer.h"
 
 namespace svr {
 namespace gl {

@@ -8,10 +8,10 @@
 #include <map>
 #include <numbers>
 
-#include "renderers/core/derived_cache.h"
-#include "renderers/core/splat_footprint.h"
-#include "renderers/core/splat_projection.h"
-#include "renderers/core/splat_settings.h"
+#include "renderers/classification/derived_cache.h"
+#include "renderers/kernels/splat_footprint.h"
+#include "renderers/kernels/splat_projection.h"
+#include "renderers/kernels/splat_settings.h"
 #include "renderers/gl/gl_context.h"
 #include "renderers/gl/gl_framebuffer.h"
 #include "renderers/gl/gl_objects.h"
@@ -19,7 +19,7 @@
 #include "renderers/gl/gl_splat_shaders.h"
 #include "renderers/gl/gl_state.h"
 #include "renderers/gl/gl_voxel_list.h"
-#include "spectral/error.h"
+#include "base/error.h"
 
 namespace svr {
 

@@ -27,9 +27,9 @@
 #include <cstdint>
 #include <memory>
 
-#include "renderers/core/derived_cache.h"
-#include "renderers/core/renderer.h"
-#include "renderers/core/splat_settings.h"
+#include "renderers/classification/derived_cache.h"
+#include "renderers/render/renderer.h"
+#include "renderers/kernels/splat_settings.h"
 #include "renderers/gl/gl_context.h"
 #include "renderers/gl/gl_objects.h"
 #include "renderers/gl/gl_voxel_list.h"

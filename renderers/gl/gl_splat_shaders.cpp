@@ -104,7 +104,7 @@ void main() {
   int E = u_entries;
   int e0 = v.cell_entry.w, e1 = min(e0 + 1, E - 1);
   float f = v.world_frac.w, g = 1.0 - f;
-  // The CPU splat's shade: two-sided Phong (renderers/core/classified_sample.h) at the 8 corners
+  // The CPU splat's shade: two-sided Phong (renderers/classification/classified_sample.h) at the 8 corners
   // of the voxel's cell, averaged; full light and no highlight where the gradient vanishes.
   vec3 view = u_orthographic != 0 ? -u_forward : normalize(u_eye - v.world_frac.xyz);
   vec3 light = u_headlight != 0 ? view : u_light;

@@ -15,7 +15,7 @@
 #include "renderers/gl/gl_program.h"
 #include "renderers/gl/gl_raycast_frame.h"
 #include "renderers/gl/gl_splat_frame.h"
-#include "spectral/error.h"
+#include "base/error.h"
 
 namespace svr::gl {
 

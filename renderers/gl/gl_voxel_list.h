@@ -10,8 +10,8 @@
 #include <memory>
 #include <vector>
 
-#include "renderers/core/classification.h"
-#include "renderers/core/splat_voxels.h"
+#include "renderers/classification/classification.h"
+#include "renderers/kernels/splat_voxels.h"
 
 namespace svr::gl {
 

@@ -6,7 +6,7 @@
 // set (raycast_kernel_portable.cpp, raycast_kernel_avx2.cpp), each of which defines
 // SVR_RAYCAST_ISA, the namespace its instantiations live in, so that the two compilations of
 // the same templates never meet at link time. With AVX2 the eight corner weights of a
-// trilinear cell are one vector, and a sample's value and gradient (core/gradient_volume.h)
+// trilinear cell are one vector, and a sample's value and gradient (kernels/gradient_volume.h)
 // the four lanes of one multiply-add chain over its corners.
 //
 // Positions and steps are single precision inside the loop: sample positions are at most a
@@ -17,12 +17,12 @@
 #include <cmath>
 #include <glm/geometric.hpp>
 
-#include "renderers/core/classification.h"
-#include "renderers/core/classified_sample.h"
-#include "renderers/core/front_transmittance.h"
-#include "renderers/core/gradient_volume.h"
-#include "renderers/core/occupancy_pyramid.h"
-#include "renderers/core/renderer.h"
+#include "renderers/classification/classification.h"
+#include "renderers/classification/classified_sample.h"
+#include "renderers/render/front_transmittance.h"
+#include "renderers/kernels/gradient_volume.h"
+#include "renderers/kernels/occupancy_pyramid.h"
+#include "renderers/render/renderer.h"
 #include "renderers/raycast/sample_table.h"
 
 // SVR_RAYCAST_TARGET: the function attribute that compiles this namespace for the instruction
@@ -39,7 +39,7 @@
 #include <immintrin.h>
 #endif
 
-#include "renderers/core/channel_widths.h"
+#include "renderers/simd/channel_widths.h"
 #include "renderers/raycast/raycast_kernels.h"
 
 namespace svr::raycast::SVR_RAYCAST_ISA {
@@ -336,7 +336,7 @@ SVR_RAYCAST_TARGET void traceTile(const TileJob& job) {
   const float half_inv_spacing[3] = {static_cast<float>(0.5 * inv_spacing.x),
                                      static_cast<float>(0.5 * inv_spacing.y),
                                      static_cast<float>(0.5 * inv_spacing.z)};
-  // A brick samples the whole grid's lattice and takes only its own samples (core/brick_box.h),
+  // A brick samples the whole grid's lattice and takes only its own samples (volume/brick_box.h),
   // at local positions p − origin (exact: p ≥ origin ≥ 0 and both are on float's grid there).
   const BrickClip brick(cv);
   const Dims& whole = brick.whole;

@@ -3,10 +3,10 @@
 // the kernel for a channel count, transmittance and gradient source (raycast_kernel.h holds
 // the loop; raycast_kernel_portable.cpp and raycast_kernel_avx2.cpp compile it).
 
-#include "renderers/core/classification.h"
-#include "renderers/core/gradient_volume.h"
-#include "renderers/core/occupancy_pyramid.h"
-#include "renderers/core/renderer.h"
+#include "renderers/classification/classification.h"
+#include "renderers/kernels/gradient_volume.h"
+#include "renderers/kernels/occupancy_pyramid.h"
+#include "renderers/render/renderer.h"
 #include "renderers/raycast/sample_table.h"
 
 namespace svr::raycast {

@@ -2,10 +2,10 @@
 
 #include <fmt/format.h>
 
-#include "renderers/core/front_transmittance.h"
+#include "renderers/render/front_transmittance.h"
 #include "renderers/raycast/raycast_kernels.h"
-#include "renderers/core/backend_entry.h"
-#include "spectral/error.h"
+#include "renderers/render/backend_entry.h"
+#include "base/error.h"
 
 namespace svr {
 namespace {

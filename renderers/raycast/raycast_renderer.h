@@ -1,12 +1,12 @@
 #pragma once
 // The reference backend (design.md §5): a ray per pixel, front to back, trilinear samples, Phong
-// shading with gradients precomputed at the voxels (core/gradient_volume.h; central differences
+// shading with gradients precomputed at the voxels (kernels/gradient_volume.h; central differences
 // on the fly when they do not fit the memory budget), early ray termination, empty-space
 // skipping over min–max blocks, OpenMP over image tiles; orthographic and perspective cameras.
-// The inner loop is compiled for the channel counts of core/channel_widths.h
+// The inner loop is compiled for the channel counts of simd/channel_widths.h
 // (raycast_kernel.h); spectral:31/81 and other counts take the dynamic path.
 
-#include "renderers/core/renderer.h"
+#include "renderers/render/renderer.h"
 #include "spectral/relight_kernel.h"
 
 namespace svr {

@@ -9,8 +9,8 @@
 #include <memory>
 #include <vector>
 
-#include "renderers/core/classification.h"
-#include "renderers/core/classified_sample.h"
+#include "renderers/classification/classification.h"
+#include "renderers/classification/classified_sample.h"
 
 namespace svr::raycast {
 

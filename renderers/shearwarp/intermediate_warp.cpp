@@ -3,8 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
-#include "renderers/core/channel_widths.h"
-#include "renderers/core/float4.h"
+#include "renderers/simd/channel_widths.h"
+#include "renderers/simd/float4.h"
 
 namespace svr::shearwarp {
 

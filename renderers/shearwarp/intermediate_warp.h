@@ -8,7 +8,7 @@
 #include <algorithm>
 #include <vector>
 
-#include "renderers/core/huge_pages.h"
+#include "renderers/memory/huge_pages.h"
 #include "renderers/shearwarp/shear_warp_factorization.h"
 #include "spectral/light_independent_image.h"
 

@@ -5,9 +5,9 @@
 #include <span>
 #include <utility>
 
-#include "renderers/core/classified_sample.h"
-#include "renderers/core/float4.h"
-#include "renderers/core/volume.h"
+#include "renderers/classification/classified_sample.h"
+#include "renderers/simd/float4.h"
+#include "renderers/volume/volume.h"
 
 namespace svr::shearwarp {
 

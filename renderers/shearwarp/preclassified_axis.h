@@ -20,9 +20,9 @@
 #include <span>
 #include <vector>
 
-#include "renderers/core/block_arena.h"
-#include "renderers/core/classification.h"
-#include "renderers/core/classified_sample.h"
+#include "renderers/memory/block_arena.h"
+#include "renderers/classification/classification.h"
+#include "renderers/classification/classified_sample.h"
 #include "renderers/shearwarp/rle_volume.h"
 
 namespace svr::shearwarp {

@@ -10,10 +10,10 @@
 #include <span>
 #include <type_traits>
 
-#include "renderers/core/classified_sample.h"
-#include "renderers/core/float4.h"
-#include "renderers/core/volume.h"
-#include "spectral/error.h"
+#include "renderers/classification/classified_sample.h"
+#include "renderers/simd/float4.h"
+#include "renderers/volume/volume.h"
+#include "base/error.h"
 
 namespace svr::shearwarp {
 namespace {
@@ -44,7 +44,7 @@ struct SliceRows {
 // along y, a volume row apart: read in place, every voxel would be a cache line of its own, read
 // once per slice that holds it; gathered for the group at once, each line is read once.
 //
-// The gathered planes come from a block arena (core/block_arena.h) kept per thread for the
+// The gathered planes come from a block arena (memory/block_arena.h) kept per thread for the
 // whole encoding: a 64-slice group of a 256³ volume is 17 MiB, allocated and faulted in once,
 // not again for every group.
 template <class T>

@@ -20,8 +20,8 @@
 #include <span>
 #include <vector>
 
-#include "renderers/core/block_arena.h"
-#include "renderers/core/classification.h"
+#include "renderers/memory/block_arena.h"
+#include "renderers/classification/classification.h"
 
 namespace svr::shearwarp {
 

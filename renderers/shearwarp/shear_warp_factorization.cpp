@@ -7,7 +7,7 @@
 #include <glm/geometric.hpp>
 #include <glm/vec2.hpp>
 
-#include "spectral/error.h"
+#include "base/error.h"
 
 namespace svr::shearwarp {
 

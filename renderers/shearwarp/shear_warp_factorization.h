@@ -14,8 +14,8 @@
 
 #include <glm/vec3.hpp>
 
-#include "renderers/core/camera.h"
-#include "renderers/core/volume.h"
+#include "renderers/scene/camera.h"
+#include "renderers/volume/volume.h"
 
 namespace svr::shearwarp {
 

@@ -28,9 +28,9 @@
 #include <cstring>
 #include <vector>
 
-#include "renderers/core/channel_widths.h"
-#include "renderers/core/classified_sample.h"
-#include "renderers/core/float4.h"
+#include "renderers/simd/channel_widths.h"
+#include "renderers/classification/classified_sample.h"
+#include "renderers/simd/float4.h"
 #include "renderers/shearwarp/shearwarp_kernels.h"
 
 namespace svr::shearwarp::SVR_SHEARWARP_ISA {

@@ -7,8 +7,8 @@
 #include <cmath>
 #include <vector>
 
-#include "renderers/core/classification.h"
-#include "renderers/core/classified_sample.h"
+#include "renderers/classification/classification.h"
+#include "renderers/classification/classified_sample.h"
 #include "renderers/shearwarp/intermediate_warp.h"
 #include "renderers/shearwarp/preclassified_axis.h"
 #include "renderers/shearwarp/rle_volume.h"
@@ -56,7 +56,7 @@ struct CompositeJob {
   const ShadingTable* shading = nullptr;
   const PowerTable* opacity_power = nullptr;
   const PowerTable* transmission_power = nullptr;
-  // A brick of a distributed render (core/brick_box.h): the view is the whole grid's; slices
+  // A brick of a distributed render (volume/brick_box.h): the view is the whole grid's; slices
   // and in-slice positions are placed by the brick's origin (the index of its first stored
   // voxel), and only its own samples are taken — slices [slice_begin, slice_end) of the
   // encoding and in-slice positions within [lo, hi) (whole-grid voxel coordinates, open to ±∞

@@ -12,8 +12,8 @@
 #include "renderers/shearwarp/intermediate_warp.h"
 #include "renderers/shearwarp/shear_warp_factorization.h"
 #include "renderers/shearwarp/shearwarp_kernels.h"
-#include "spectral/error.h"
-#include "renderers/core/backend_entry.h"
+#include "base/error.h"
+#include "renderers/render/backend_entry.h"
 #include "renderers/shearwarp/rle_volume.h"
 
 namespace svr {

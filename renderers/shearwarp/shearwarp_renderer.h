@@ -16,8 +16,8 @@
 // only (bilinear in a slice, none between slices), the sample spacing grows towards 45°, the
 // principal axis switches (and the image pops) at 45°, and zooming in blurs.
 
-#include "renderers/core/renderer.h"
-#include "renderers/core/reuse_pool.h"
+#include "renderers/render/renderer.h"
+#include "renderers/memory/reuse_pool.h"
 #include "spectral/relight_kernel.h"
 
 namespace svr {

@@ -6,9 +6,9 @@
 #include <atomic>
 #include <cmath>
 
-#include "renderers/core/channel_widths.h"
-#include "renderers/core/fast_exp.h"
-#include "renderers/core/float4.h"
+#include "renderers/simd/channel_widths.h"
+#include "renderers/simd/fast_exp.h"
+#include "renderers/simd/float4.h"
 #include "renderers/splat/band_state.h"
 #include "renderers/splat/splat_coverage.h"
 

@@ -4,8 +4,8 @@
 // lay wholly in front of the other, so colours bleed, and the order flips (pops) as the view
 // turns; kept because the harness charts that difference against the sheet mode.
 
-#include "renderers/core/renderer.h"
-#include "renderers/core/splat_footprint.h"
+#include "renderers/render/renderer.h"
+#include "renderers/kernels/splat_footprint.h"
 #include "renderers/splat/splat_coverage.h"
 
 namespace svr::splat {

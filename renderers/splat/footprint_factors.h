@@ -15,7 +15,7 @@
 #include <optional>
 #include <vector>
 
-#include "renderers/core/splat_footprint.h"
+#include "renderers/kernels/splat_footprint.h"
 
 namespace svr::splat {
 

@@ -6,8 +6,8 @@
 #include <atomic>
 #include <cmath>
 
-#include "renderers/core/fast_exp.h"
-#include "renderers/core/float4.h"
+#include "renderers/simd/fast_exp.h"
+#include "renderers/simd/float4.h"
 #include "renderers/splat/band_state.h"
 #include "renderers/splat/splat_coverage.h"
 

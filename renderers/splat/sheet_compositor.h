@@ -7,8 +7,8 @@
 // sheets hold the reconstructed value, classified per sheet pixel (the list must hold the
 // reconstruction's voxels); otherwise the splats' own classified coefficients.
 
-#include "renderers/core/renderer.h"
-#include "renderers/core/splat_footprint.h"
+#include "renderers/render/renderer.h"
+#include "renderers/kernels/splat_footprint.h"
 #include "renderers/splat/splat_coverage.h"
 
 namespace svr::splat {

@@ -11,9 +11,9 @@
 #include <optional>
 #include <vector>
 
-#include "renderers/core/fast_exp.h"
-#include "renderers/core/float4.h"
-#include "renderers/core/splat_footprint.h"
+#include "renderers/simd/fast_exp.h"
+#include "renderers/simd/float4.h"
+#include "renderers/kernels/splat_footprint.h"
 #include "renderers/splat/footprint_factors.h"
 #include "renderers/splat/splat_list.h"
 

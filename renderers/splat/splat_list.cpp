@@ -7,10 +7,10 @@
 #include <glm/geometric.hpp>
 #include <utility>
 
-#include "renderers/core/classified_sample.h"
-#include "renderers/core/splat_projection.h"
+#include "renderers/classification/classified_sample.h"
+#include "renderers/kernels/splat_projection.h"
 #include "renderers/splat/splat_coverage.h"
-#include "spectral/error.h"
+#include "base/error.h"
 
 namespace svr::splat {
 

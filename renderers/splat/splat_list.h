@@ -11,12 +11,12 @@
 #include <span>
 #include <vector>
 
-#include "renderers/core/classification.h"
-#include "renderers/core/classified_sample.h"
-#include "renderers/core/renderer.h"
-#include "renderers/core/splat_footprint.h"
-#include "renderers/core/splat_projection.h"
-#include "renderers/core/splat_voxels.h"
+#include "renderers/classification/classification.h"
+#include "renderers/classification/classified_sample.h"
+#include "renderers/render/renderer.h"
+#include "renderers/kernels/splat_footprint.h"
+#include "renderers/kernels/splat_projection.h"
+#include "renderers/kernels/splat_voxels.h"
 
 namespace svr::splat {
 

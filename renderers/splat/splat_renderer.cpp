@@ -5,14 +5,14 @@
 #include <algorithm>
 #include <glm/vec2.hpp>
 
-#include "renderers/core/splat_footprint.h"
-#include "renderers/core/splat_settings.h"
-#include "renderers/core/backend_entry.h"
+#include "renderers/kernels/splat_footprint.h"
+#include "renderers/kernels/splat_settings.h"
+#include "renderers/render/backend_entry.h"
 #include "renderers/splat/direct_compositor.h"
 #include "renderers/splat/sheet_compositor.h"
 #include "renderers/splat/splat_coverage.h"
 #include "renderers/splat/splat_list.h"
-#include "spectral/error.h"
+#include "base/error.h"
 
 namespace svr {
 

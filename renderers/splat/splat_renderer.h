@@ -1,15 +1,15 @@
 #pragma once
 // The splatting backend (design.md §5, issue 5): every voxel that scatters or absorbs is a Gaussian
-// kernel projected to an image footprint (core/splat_footprint.h: one for every splat of an
+// kernel projected to an image footprint (kernels/splat_footprint.h: one for every splat of an
 // orthographic view, evaluated in factors (footprint_factors.h), EWA ellipses with a
 // screen-space low-pass per splat for perspective; splat_coverage.h), composited either through
 // image-aligned sheet buffers (sheet_compositor.h, the default) or splat by splat
 // (direct_compositor.h). OpenMP over fixed bands of image rows: identical bytes for any number
-// of threads. Options and their measured defaults: core/splat_settings.h
+// of threads. Options and their measured defaults: kernels/splat_settings.h
 // (`svr render --help-options splat`).
 
-#include "renderers/core/renderer.h"
-#include "renderers/core/reuse_pool.h"
+#include "renderers/render/renderer.h"
+#include "renderers/memory/reuse_pool.h"
 #include "spectral/relight_kernel.h"
 
 namespace svr {

@@ -3,7 +3,7 @@
 #include <string>
 
 #include "spectral/csv_table.h"
-#include "spectral/error.h"
+#include "base/error.h"
 #include "spectral/wavelength_grid.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {

@@ -5,7 +5,7 @@
 #include <string>
 
 #include "harness/image_files.h"
-#include "spectral/error.h"
+#include "base/error.h"
 #include "tests/fuzz/fuzz_support.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {

@@ -3,8 +3,8 @@
 #include <string>
 
 #include "spectral/design_palette.h"
-#include "spectral/error.h"
-#include "spectral/json_reader.h"
+#include "base/error.h"
+#include "base/json_reader.h"
 #include "spectral/palette.h"
 #include "tests/fuzz/fuzz_support.h"
 

@@ -3,9 +3,9 @@
 // functions, lights, mixes, camera, image, render options, shading and the colour model's name.
 #include <string>
 
-#include "renderers/core/scene.h"
-#include "spectral/error.h"
-#include "spectral/json_reader.h"
+#include "renderers/scene/scene.h"
+#include "base/error.h"
+#include "base/json_reader.h"
 #include "tests/fuzz/fuzz_support.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {

@@ -10,9 +10,9 @@
 #include <stdexcept>
 #include <vector>
 
-#include "renderers/core/volume_io.h"
-#include "spectral/data_dir.h"
-#include "spectral/error.h"
+#include "renderers/volume/volume_io.h"
+#include "base/data_dir.h"
+#include "base/error.h"
 
 namespace svr::fuzz {
 namespace fs = std::filesystem;

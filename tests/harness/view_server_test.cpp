@@ -12,9 +12,9 @@
 #include <fstream>
 #include <thread>
 
-#include "renderers/core/scene_render.h"
+#include "renderers/render/scene_render.h"
 #include "renderers/registry.h"
-#include "spectral/error.h"
+#include "base/error.h"
 #include "harness/view/frame_format.h"
 
 #include <fmt/format.h>

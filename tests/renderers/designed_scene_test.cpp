@@ -6,17 +6,17 @@
 #include <filesystem>
 #include <map>
 
-#include "renderers/core/classification.h"
-#include "renderers/core/scene.h"
-#include "renderers/core/scene_render.h"
-#include "renderers/scene_model.h"
+#include "renderers/classification/classification.h"
+#include "renderers/scene/scene.h"
+#include "renderers/render/scene_render.h"
+#include "renderers/model/scene_model.h"
 #include "renderers/registry.h"
 #include "spectral/colour_model.h"
 #include "spectral/design_palette.h"
 #include "spectral/design_solver.h"
-#include "spectral/disk_cache.h"
+#include "base/disk_cache.h"
 #include "spectral/componentwise_model.h"
-#include "spectral/error.h"
+#include "base/error.h"
 #include "spectral/image_difference.h"
 #include "spectral/post_illumination.h"
 #include "tests/renderers/test_scenes.h"

@@ -10,12 +10,12 @@
 #include <cstring>
 #include <thread>
 
-#include "renderers/core/classification.h"
-#include "renderers/core/scene_render.h"
-#include "renderers/scene_model.h"
+#include "renderers/classification/classification.h"
+#include "renderers/render/scene_render.h"
+#include "renderers/model/scene_model.h"
 #include "renderers/registry.h"
 #include "spectral/componentwise_model.h"
-#include "spectral/error.h"
+#include "base/error.h"
 #include "spectral/light_mixer.h"
 #include "spectral/post_illumination.h"
 #include "tests/renderers/test_scenes.h"

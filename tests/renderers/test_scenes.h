@@ -6,9 +6,9 @@
 
 #include <optional>
 
-#include "renderers/core/renderer.h"
-#include "renderers/core/scene.h"
-#include "renderers/core/scene_render.h"
+#include "renderers/render/renderer.h"
+#include "renderers/scene/scene.h"
+#include "renderers/render/scene_render.h"
 #include "spectral/colorimetry.h"
 #include "spectral/spectrum_library.h"
 

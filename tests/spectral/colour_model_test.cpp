@@ -6,7 +6,7 @@
 #include <fstream>
 
 #include "spectral/componentwise_model.h"
-#include "spectral/error.h"
+#include "base/error.h"
 #include "spectral/factor_training.h"
 #include "spectral/linear_model.h"
 #include "tests/spectral/test_data.h"

@@ -7,7 +7,7 @@
 
 #include "spectral/bounded_least_squares.h"
 #include "spectral/design_solver.h"
-#include "spectral/error.h"
+#include "base/error.h"
 #include "tests/spectral/test_data.h"
 
 namespace svr {

@@ -5,7 +5,7 @@
 #include <filesystem>
 #include <fstream>
 
-#include "spectral/error.h"
+#include "base/error.h"
 #include "tests/spectral/test_data.h"
 
 namespace svr {

@@ -7,7 +7,7 @@
 #include <random>
 
 #include "spectral/componentwise_model.h"
-#include "spectral/error.h"
+#include "base/error.h"
 #include "spectral/factor_training.h"
 #include "spectral/light_mixer.h"
 #include "spectral/linear_model.h"

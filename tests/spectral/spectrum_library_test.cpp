@@ -2,7 +2,7 @@
 
 #include <gtest/gtest.h>
 
-#include "spectral/error.h"
+#include "base/error.h"
 #include "tests/spectral/test_data.h"
 
 namespace svr {

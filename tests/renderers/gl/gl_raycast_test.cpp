@@ -10,13 +10,13 @@
 #include <fmt/format.h>
 #include <glm/geometric.hpp>
 
-#include "renderers/core/classification.h"
-#include "renderers/scene_model.h"
+#include "renderers/classification/classification.h"
+#include "renderers/model/scene_model.h"
 #include "renderers/gl/gl_context.h"
 #include "renderers/gl/gl_renderer.h"
 #include "renderers/raycast/raycast_renderer.h"
 #include "spectral/componentwise_model.h"
-#include "spectral/error.h"
+#include "base/error.h"
 #include "spectral/image_difference.h"
 #include "tests/renderers/test_scenes.h"
 

@@ -9,7 +9,7 @@
 
 #include "renderers/gl/gl_relighter.h"
 #include "spectral/componentwise_model.h"
-#include "spectral/error.h"
+#include "base/error.h"
 #include "spectral/post_illumination.h"
 #include "tests/renderers/test_scenes.h"
 

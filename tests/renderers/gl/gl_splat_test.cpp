@@ -6,15 +6,15 @@
 #include <cmath>
 #include <glm/geometric.hpp>
 
-#include "renderers/core/classification.h"
-#include "renderers/core/procedural_volume.h"
-#include "renderers/scene_model.h"
+#include "renderers/classification/classification.h"
+#include "renderers/volume/procedural_volume.h"
+#include "renderers/model/scene_model.h"
 #include "renderers/gl/gl_renderer.h"
 #include "renderers/raycast/raycast_renderer.h"
-#include "renderers/core/splat_settings.h"
+#include "renderers/kernels/splat_settings.h"
 #include "renderers/splat/splat_renderer.h"
 #include "spectral/componentwise_model.h"
-#include "spectral/error.h"
+#include "base/error.h"
 #include "spectral/image_difference.h"
 #include "tests/renderers/test_scenes.h"
 

@@ -7,13 +7,13 @@
 #include <string>
 #include <vector>
 
-#include "renderers/core/classification.h"
-#include "renderers/core/gradient_volume.h"
-#include "renderers/scene_model.h"
-#include "renderers/core/scene_render.h"
+#include "renderers/classification/classification.h"
+#include "renderers/kernels/gradient_volume.h"
+#include "renderers/model/scene_model.h"
+#include "renderers/render/scene_render.h"
 #include "renderers/raycast/raycast_renderer.h"
 #include "spectral/componentwise_model.h"
-#include "spectral/error.h"
+#include "base/error.h"
 #include "tests/renderers/test_scenes.h"
 
 namespace svr {

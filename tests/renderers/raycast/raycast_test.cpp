@@ -4,11 +4,11 @@
 
 #include <cmath>
 
-#include "renderers/core/classification.h"
-#include "renderers/scene_model.h"
+#include "renderers/classification/classification.h"
+#include "renderers/model/scene_model.h"
 #include "renderers/registry.h"
 #include "spectral/componentwise_model.h"
-#include "spectral/error.h"
+#include "base/error.h"
 #include "spectral/linear_model.h"
 #include "spectral/post_illumination.h"
 #include "tests/renderers/test_scenes.h"

@@ -10,16 +10,16 @@
 #include <utility>
 #include <vector>
 
-#include "renderers/core/classification.h"
-#include "renderers/core/classified_sample.h"
-#include "renderers/core/procedural_volume.h"
-#include "renderers/scene_model.h"
+#include "renderers/classification/classification.h"
+#include "renderers/classification/classified_sample.h"
+#include "renderers/volume/procedural_volume.h"
+#include "renderers/model/scene_model.h"
 #include "renderers/raycast/raycast_renderer.h"
 #include "renderers/shearwarp/intermediate_warp.h"
 #include "renderers/shearwarp/preclassified_axis.h"
 #include "renderers/shearwarp/rle_volume.h"
 #include "renderers/shearwarp/shear_warp_factorization.h"
-#include "spectral/error.h"
+#include "base/error.h"
 #include "spectral/linear_model.h"
 #include "spectral/image_difference.h"
 #include "tests/renderers/test_scenes.h"

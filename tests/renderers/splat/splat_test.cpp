@@ -6,19 +6,19 @@
 #include <cstring>
 #include <glm/geometric.hpp>
 
-#include "renderers/core/classification.h"
-#include "renderers/core/procedural_volume.h"
-#include "renderers/scene_model.h"
+#include "renderers/classification/classification.h"
+#include "renderers/volume/procedural_volume.h"
+#include "renderers/model/scene_model.h"
 #include "renderers/raycast/raycast_renderer.h"
-#include "renderers/core/classified_sample.h"
-#include "renderers/core/scene_render.h"
-#include "renderers/core/splat_footprint.h"
-#include "renderers/core/splat_settings.h"
-#include "renderers/core/splat_projection.h"
+#include "renderers/classification/classified_sample.h"
+#include "renderers/render/scene_render.h"
+#include "renderers/kernels/splat_footprint.h"
+#include "renderers/kernels/splat_settings.h"
+#include "renderers/kernels/splat_projection.h"
 #include "renderers/splat/splat_coverage.h"
 #include "renderers/splat/splat_list.h"
 #include "renderers/splat/splat_renderer.h"
-#include "spectral/error.h"
+#include "base/error.h"
 #include "spectral/image_difference.h"
 #include "tests/renderers/test_scenes.h"
 

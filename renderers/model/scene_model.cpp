@@ -1,0 +1,246 @@
+#include "renderers/model/scene_model.h"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "renderers/render/scene_render.h"
+#include "renderers/registry.h"
+#include "spectral/componentwise_model.h"
+#include "spectral/image_difference.h"
+#include "base/disk_cache.h"
+#include "spectral/observer_key.h"
+#include "base/error.h"
+#include "spectral/factor_training.h"
+#include "spectral/model_error.h"
+
+namespace svr {
+namespace {
+
+// The scene's palette as an evaluation set: what the light-independent image holds, under the
+// scene's lights at unit luminance. That is each material's reflectance, seen through its own
+// absorber where it absorbs spectrally (deep products R ⊙ t^m, t its per-step transmission),
+// and the flat white of the specular term (where a material has one) and the backdrop, each
+// seen through every spectral absorber (the image's T ⊙ b). A material that absorbs
+// achromatically pairs with the flat transmission 1, whose deep products are the single ones
+// again; where every material does, T is a scalar (classification.h) that never enters a
+// componentwise product, and a model needs to span only the reflectances. The white enters
+// only for full light matrices: projected ones relight it as the light's own coefficients
+// (P·L), and their span is the paper's, of light × material signals, which a designed palette's
+// projection term was fitted to; taking the lights' own signals too costs those materials more.
+EvaluationSet scenePalette(const Scene& scene, const Observer& observer,
+                           LightMatrixKind light_matrix) {
+  const auto& materials = scene.transfer_function.materials;
+  const WavelengthGrid& grid = observer.grid();
+  const Spectrum flat(grid, Eigen::VectorXd::Ones(grid.count));
+  std::vector<Spectrum> lights, seen_through, spectral_absorbers;
+  for (const auto& l : scene.lights) lights.push_back(observer.unitLuminance(l.spectrum));
+  if (light_matrix == LightMatrixKind::kFull &&
+      std::any_of(materials.begin(), materials.end(),
+                  [](const Material& m) { return m.specular > 0; }))
+    seen_through.push_back(flat);
+  if (scene.background) seen_through.push_back(*scene.background);
+
+  EvaluationSet set{"palette", std::move(lights), {}, {}};
+  auto add = [&](const Spectrum& reflectance, const Spectrum& absorber) {
+    set.reflectances.push_back(reflectance);
+    set.absorbers.push_back(absorber);
+  };
+  const double step = scene.stepWorld();
+  for (const Material& m : materials) {
+    if (!m.absorption || m.extinction <= 0) {
+      add(m.reflectance, flat);
+      continue;
+    }
+    const Eigen::VectorXd shape = m.absorption->values() / m.absorption->values().mean();
+    spectral_absorbers.emplace_back(grid, (-step * m.extinction * shape).array().exp().matrix());
+    add(m.reflectance, spectral_absorbers.back());
+  }
+  if (spectral_absorbers.empty()) spectral_absorbers.push_back(flat);
+  for (const auto& t : spectral_absorbers)
+    for (const auto& s : seen_through) add(s, t);
+  return set;
+}
+
+double worstMean(const ColourModel& model, const Observer& observer, const EvaluationSet& set) {
+  double worst = 0.0;
+  for (const auto& row : evaluateModel(model, observer, set))
+    if (row.evaluation_case == "product" || row.evaluation_case == "absorb256")
+      worst = std::max(worst, row.stats.finite ? row.stats.mean : INFINITY);
+  return worst;
+}
+
+// Bump when training, its objective, its defaults or the auto rule change: models cached by an
+// older version are then rebuilt rather than reused.
+constexpr int kSceneModelVersion = 3;  // 3: palettes of what the image holds
+
+nlohmann::json valuesOf(const std::vector<Spectrum>& spectra) {
+  nlohmann::json out = nlohmann::json::array();
+  for (const auto& s : spectra) out.push_back(valuesJson(s.values()));
+  return out;
+}
+
+// Everything a trained scene model depends on: the name asked for, the observer's weighted
+// colour-matching functions, the grid and the training set's values.
+nlohmann::json modelKey(const std::string& name, const Observer& observer,
+                        const TrainingSet& training) {
+  nlohmann::json key = {
+      {"version", kSceneModelVersion},
+      {"asked", name},
+      {"observer", observerKey(observer)},
+      {"lights", valuesOf(training.lights)},
+      {"reflectances", valuesOf(training.reflectances)},
+      {"absorbers", valuesOf(training.absorbers)},
+      {"depths", training.depths},
+  };
+  return key;
+}
+
+SceneModel fromCache(const nlohmann::json& payload, const std::string& name,
+                     const std::string& source) {
+  SceneModel m{modelFromJson(payload.at("model"), source), payload.at("description"), name};
+  m.palette_de2000 = payload.at("palette_de2000");
+  if (payload.contains("target")) m.target = payload.at("target");
+  m.cached = true;
+  return m;
+}
+
+nlohmann::json toCache(const SceneModel& m) {
+  nlohmann::json payload = {{"model", m.model->toJson()},
+                            {"description", m.description},
+                            {"palette_de2000", m.palette_de2000}};
+  if (std::isfinite(m.target)) payload["target"] = m.target;
+  return payload;
+}
+
+SceneModel trainSceneModel(const std::string& name, const Scene& scene, const Observer& observer,
+                           const EvaluationSet& palette, const TrainingSet& training) {
+  const LightMatrixKind light_matrix = parseModelName(name).light_matrix;
+  auto describe = [&](int k, double error) {
+    return fmt::format("factor:{} trained on the scene palette ({} lights × {} reflectances, {} "
+                       "light matrices; mean ΔE2000 {:.3f} single/deep)",
+                       k, training.lights.size(), training.reflectances.size(),
+                       toString(light_matrix), error);
+  };
+  const int k = parseModelName(name).k;
+  auto model = trainFactorModel(observer, training, k, FactorVariant::kRefined, light_matrix);
+  const double error = worstMean(*model, observer, palette);
+  return {std::move(model), describe(k, error), name, error};
+}
+
+// The smallest factor:k (full light matrices) whose probe error is within the scene's target;
+// spectral:81, exact, when none up to factor:16 is.
+SceneModel chooseAutoModel(const Scene& scene, const Observer& observer) {
+  const ModelProbe probe(scene, observer);
+  double best_error = INFINITY;
+  int best_k = 0;
+  std::string trail;  // each candidate's probe error, for the record
+  for (int k = 3; k <= 16; ++k) {
+    SceneModel candidate = makeSceneModel(fmt::format("factor:{}", k), scene, observer);
+    const double error = probe.error(*candidate.model);
+    trail += fmt::format("{}{}: {:.2f}", trail.empty() ? "" : ", ", k, error);
+    if (error < best_error) best_error = error, best_k = k;
+    if (error <= scene.auto_target) {
+      candidate.description =
+          fmt::format("auto: {} — probe render {} mean ΔE2000 {:.3f} (worst light) against "
+                      "spectral:81, the smallest k within {} (k: error {})",
+                      candidate.description, probe.size(), error, scene.auto_target, trail);
+      candidate.asked = "auto";
+      candidate.target = scene.auto_target;
+      candidate.probe_de2000 = error;
+      return candidate;
+    }
+  }
+  SceneModel exact{makeSpectralModel(observer, observer.grid().count),
+                   fmt::format("auto: spectral:{} — no factor:k up to 16 reached mean ΔE2000 {} "
+                               "on the probe render {} (closest factor:{}, {:.3f}; k: error {})",
+                               observer.grid().count, scene.auto_target, probe.size(), best_k,
+                               best_error, trail),
+                   "auto"};
+  exact.target = scene.auto_target;
+  exact.probe_de2000 = 0.0;
+  return exact;
+}
+
+}  // namespace
+
+ModelProbe::ModelProbe(const Scene& scene, const Observer& observer)
+    : scene_(scene), observer_(observer) {
+  const double scale = std::min(1.0, double(kLongerSide) / std::max(scene.width, scene.height));
+  scene_.width = std::max(1, static_cast<int>(std::lround(scene.width * scale)));
+  scene_.height = std::max(1, static_cast<int>(std::lround(scene.height * scale)));
+  lights_ = sceneIlluminations(scene, observer);
+  reference_model_ = makeSpectralModel(observer, observer.grid().count);
+  reference_ = render(*reference_model_);
+}
+
+double ModelProbe::error(const ColourModel& model) const {
+  const LightIndependentImage image = render(model);
+  double worst = 0.0;
+  for (const auto& light : lights_) {
+    const ImageDifference d = compareRelit(image, model, reference_, *reference_model_, light,
+                                           observer_.xyz(light), 0.98, scene_.background);
+    worst = std::max(worst, d.stats.finite ? d.stats.mean : INFINITY);
+  }
+  return worst;
+}
+
+std::string ModelProbe::size() const { return fmt::format("{}×{}", scene_.width, scene_.height); }
+
+LightIndependentImage ModelProbe::render(const ColourModel& model) const {
+  const ClassifiedVolume cv = classifyScene(scene_, model);
+  // The harness's reference backend, as the registry names it.
+  return makeRenderer(referenceRendererName())->render(sceneRequest(scene_, cv), nullptr);
+}
+
+nlohmann::json SceneModel::record() const {
+  nlohmann::json j = {{"asked", asked},
+                      {"model", model->name()},
+                      {"k", model->channels()},
+                      {"description", description}};
+  if (std::isfinite(palette_de2000)) j["palette_de2000"] = palette_de2000;
+  if (std::isfinite(target)) j["target"] = target;
+  if (std::isfinite(probe_de2000)) j["probe_de2000"] = probe_de2000;
+  if (model->name().rfind("factor:", 0) == 0) j["cached"] = cached;
+  return j;
+}
+
+SceneModel makeSceneModel(const std::string& name, const Scene& scene, const Observer& observer) {
+  if (name == "auto") return chooseAutoModel(scene, observer);
+  const ModelName parsed = parseModelName(name);
+  switch (parsed.kind) {
+    case ModelKind::kRgb: return {makeRgbModel(observer), "rgb", name};
+    case ModelKind::kSpectral:
+      return {makeSpectralModel(observer, parsed.k, parsed.light_matrix),
+              fmt::format("spectral:{} ({} bands of the {}-sample grid, {} light matrices)",
+                          parsed.k, parsed.k, observer.grid().count,
+                          toString(parsed.light_matrix)),
+              name};
+    case ModelKind::kLinear:
+      throw Error(fmt::format("{}: linear:k has no componentwise product; the renderers take "
+                              "rgb, factor:k, spectral:n or auto", scene.file));
+    case ModelKind::kFactor: break;
+  }
+  const EvaluationSet palette = scenePalette(scene, observer, parsed.light_matrix);
+  // Deep products of the flat transmission are the single products again: trained once.
+  const std::vector<int> depths =
+      scene.transfer_function.achromatic() ? std::vector<int>{} : std::vector<int>{16, 64, 256};
+  const TrainingSet training{palette.lights, palette.reflectances, palette.absorbers, depths};
+  // Trained once per palette: a second run of the scene reads the model from the disk cache.
+  const DiskCache& cache = DiskCache::process();
+  const nlohmann::json key = modelKey(name, observer, training);
+  const DiskCache::Lookup hit = cache.load("model", key);
+  if (hit.payload) {
+    try {
+      return fromCache(*hit.payload, name, cache.entryPath("model", key).string());
+    } catch (const std::exception&) {
+      // A well-formed entry whose model does not load is rebuilt like a corrupt one.
+    }
+  }
+  SceneModel trained = trainSceneModel(name, scene, observer, palette, training);
+  cache.store("model", key, toCache(trained));
+  return trained;
+}
+
+}  // namespace svr

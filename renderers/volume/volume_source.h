@@ -1,0 +1,66 @@
+#pragma once
+// Internal to the volume readers: a parsed header plus where its voxels are, and the one
+// payload reader (raw, gzip, zlib) every format shares. Not for use outside renderers/volume/.
+
+#include <cstddef>
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "renderers/volume/volume_io.h"
+
+namespace svr::detail {
+
+struct VolumeSource {
+  VolumeHeader header;
+  std::uint64_t offset = 0;                       // bytes of header.data_file before the payload
+  std::uint64_t skip_decompressed = 0;            // bytes to drop from the decompressed stream
+  std::optional<std::uint64_t> compressed_bytes;  // length of the compressed payload, if known
+};
+
+// The path of a header's data file `name`, resolved against the header's folder. Throws
+// svr::Error naming `header_path` and `key` when `name` has a ".." component, is absolute and
+// outside that folder, or does not exist.
+std::string resolveDataFile(const std::string& header_path, const std::string& name,
+                            const std::string& key);
+
+// Size of a file in bytes; throws svr::Error naming `source` when it cannot be read.
+std::uint64_t fileSize(const std::string& path, const std::string& source);
+
+// For raw encodings: throws when the data file does not hold exactly header.data_bytes after
+// the offset ("header says … = N bytes but the data file holds M bytes").
+void checkRawPayloadSize(const VolumeSource& source);
+
+// The payload in file byte order, exactly header.data_bytes long. Throws svr::Error for short
+// files, truncated or corrupt compressed streams and streams that hold more than expected.
+std::vector<std::byte> readPayload(const VolumeSource& source);
+// Only the voxels in `box` (of header.dims), x fastest, in file byte order. Raw payloads are
+// read with a seek per run of contiguous bytes; compressed ones are inflated as a stream (all
+// of it, so that its checksum is checked as for a whole read) keeping only the box.
+std::vector<std::byte> readPayloadBox(const VolumeSource& source, const VoxelBox& box);
+// Only the voxels at the given indices along each axis (a sub-lattice: a coarse copy), x
+// fastest, in file byte order. Raw: a seek and a read per chosen row; compressed: the whole
+// stream, keeping only those voxels.
+std::vector<std::byte> readPayloadLattice(const VolumeSource& source, const LatticeIndices& at);
+
+// Readers per format (nrrd_header.cpp, metaimage_header.cpp). A header may be of any length
+// within `budget` bytes (and 1 MiB always) (the memory budget: the format sets no limit, and comments or key/value
+// metadata can run to megabytes); a line holding binary bytes is refused, so a data file given
+// by mistake fails at once with a clear error instead of being read as text.
+VolumeSource readNrrdSource(const std::string& path, std::uint64_t budget);
+VolumeSource readMetaImageSource(const std::string& path, std::uint64_t budget);
+
+// Throws "PATH: line N of the header holds binary data (byte 0x00 at column C) …" when the
+// line has a byte that no text header holds (control characters other than tab and CR).
+void checkHeaderLineIsText(const std::string& path, const std::string& line, int line_number);
+// Throws "PATH: the header runs past B bytes …, over the memory budget" when consumed > budget.
+void checkHeaderWithinBudget(const std::string& path, std::uint64_t consumed,
+                             std::uint64_t budget, const char* what_ends_it);
+
+// Shared header-text helpers.
+std::string trim(const std::string& text);
+std::string toLower(std::string text);
+std::vector<std::string> splitWhitespace(const std::string& text);
+
+}  // namespace svr::detail
