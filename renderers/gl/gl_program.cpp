@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include "base/error.h"
+#include "renderers/gl/gl_shader_sources.h"
 
 namespace svr::gl {
 namespace {
@@ -86,13 +87,7 @@ void GlProgram::set(const char* u, const std::vector<float>& v) const {
 }
 
 std::string fullscreenVertexShader() {
-  return R"(#version 450 core
-// One triangle covering the viewport; a scissor box limits it where a pass needs fewer pixels.
-void main() {
-  vec2 p = vec2((gl_VertexID & 1) * 4 - 1, (gl_VertexID & 2) * 2 - 1);
-  gl_Position = vec4(p, 0.0, 1.0);
-}
-)";
+  return glsl("fullscreen_vertex.glsl");
 }
 
 }  // namespace svr::gl
