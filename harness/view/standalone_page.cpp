@@ -63,11 +63,19 @@ std::string standalonePage(const nlohmann::json& scene_info, const LightIndepend
   const std::string data = fmt::format(
       "<script>\nwindow.SVR_EMBEDDED = {{info: {}, frame: \"{}\"}};\n</script>\n",
       scriptSafe(scene_info.dump()), base64(encodeFrame(image, header)));
-  for (const char* script : {"mixer.js", "relighter.js", "viewer.js"}) {
-    const std::string tag = fmt::format(R"(<script src="{}"></script>)", script);
-    replaceOnce(page, tag,
-                (std::string(script) == "mixer.js" ? data : "") + "<script>\n" + inlined(script) +
-                    "</script>");
+  // Every script index.html loads, inlined where its tag was, in order; the frame before them.
+  const std::string open = R"(<script src=")", close = R"("></script>)";
+  bool first = true;
+  for (size_t at = 0; (at = page.find(open, at)) != std::string::npos;) {
+    const size_t end = page.find(close, at);
+    if (end == std::string::npos)
+      throw Error("render --html: the page has an unterminated script tag");
+    const std::string script = page.substr(at + open.size(), end - at - open.size());
+    const std::string inline_script =
+        (first ? data : "") + "<script>\n" + inlined(script) + "</script>";
+    page.replace(at, end + close.size() - at, inline_script);
+    at += inline_script.size();
+    first = false;
   }
   return page;
 }
