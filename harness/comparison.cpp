@@ -98,9 +98,7 @@ ComparisonSession::Rendered ComparisonSession::render(const std::string& rendere
   const double classify_ms = session.timings().model + session.timings().classify;
   const double first_ms = session.render();
   const double steady_ms = steady ? session.render() : first_ms;
-  LightIndependentImage image = session.image();
-  SceneModel chosen = session.takeModel();
-  return {std::move(chosen), std::move(image), classify_ms, first_ms, steady_ms};
+  return {session.takeModel(), session.takeImage(), classify_ms, first_ms, steady_ms};
 }
 
 std::optional<std::string> ComparisonSession::unsupported(const std::string& renderer) const {

@@ -159,6 +159,7 @@ void RenderSession::classify() {
 
 void RenderSession::setModel(const std::string& name) {
   image_.reset();
+  noted_first_frame_ = false;  // the new classification's first frame may note things again
   chooseModel(name);
   classify();
 }
@@ -225,6 +226,13 @@ LightIndependentImage RenderSession::renderView(const Camera& camera, int width,
 const LightIndependentImage& RenderSession::image() const {
   if (!image_) throw Error(fmt::format("{}: nothing rendered yet", source_));
   return *image_;
+}
+
+LightIndependentImage RenderSession::takeImage() {
+  image();  // throws when nothing was rendered
+  LightIndependentImage taken = std::move(*image_);
+  image_.reset();
+  return taken;
 }
 
 Spectrum RenderSession::light(const std::string& name) const {

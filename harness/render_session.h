@@ -91,16 +91,17 @@ class RenderSession {
   bool rendered() const { return image_.has_value(); }
   // Throws svr::Error when nothing was rendered yet.
   const LightIndependentImage& image() const;
-  // What was noted while setting up and during the first render() (shown after a progress
-  // bar): a later frame of the same view has nothing new to say.
+  // What was noted while setting up and during the first render() of the current model (shown
+  // after a progress bar): a later frame of the same view has nothing new to say.
   const std::vector<std::string>& notes() const { return notes_; }
 
   const Scene& scene() const { return scene_; }
   const std::string& source() const { return source_; }
   const SceneModel& model() const { return model_; }
-  // Moves the model out, for a caller done with the session's frames that keeps the model
-  // beyond them (the comparison's reference); nothing else may be asked of the session after.
+  // Move the model and the kept image out, for a caller done with the session that keeps them
+  // beyond it (the comparison's runs); nothing else may be asked of the session after.
   SceneModel takeModel() { return std::move(model_); }
+  LightIndependentImage takeImage();
   const Renderer& renderer() const { return *renderer_; }
   const SessionSpectra& spectra() const { return *spectra_; }
   const ClassifiedVolume& classified() const { return classified_; }
