@@ -1,13 +1,8 @@
-# cmake -DOUT=file.cpp -DDIR=folder -DFILES=a,b [-DHEADER=h -DTYPE=T -DFUNCTION=f] -P EmbedFiles.cmake
-# Writes a C++ source defining `const T* svr::f(std::string_view path)` over the files, each as
-# a byte array (so any byte survives, and no raw-string delimiter can clash with the content);
-# HEADER declares T {path, content_type, bytes} and f. By default the viewer's page:
-# harness/view/web_assets.h, WebAsset, findWebAsset.
-if(NOT HEADER)
-  set(HEADER harness/view/web_assets.h)
-  set(TYPE WebAsset)
-  set(FUNCTION findWebAsset)
-endif()
+# cmake -DOUT=file.cpp -DDIR=folder -DFILES=a,b -DHEADER=h -DTYPE=T -DFUNCTION=f -P EmbedFiles.cmake
+# (through svr_embedded_files, cmake/SvrEmbed.cmake). Writes a C++ source defining
+# `const T* svr::f(std::string_view path)` over the files, each as a byte array (so any byte
+# survives, and no raw-string delimiter can clash with the content); HEADER declares T
+# {path, content_type, bytes} and f.
 string(REPLACE "," ";" FILES "${FILES}")
 set(body "")
 set(table "")

@@ -15,7 +15,7 @@ struct GlslFile {
   std::string_view bytes;
 };
 
-// The embedded file at this path, or nullptr (defined by the generated glsl_files.cpp).
+// The embedded file at this path, or nullptr (defined by the generated svr_gl_glsl.cpp).
 const GlslFile* findGlslFile(std::string_view path);
 
 namespace gl {
