@@ -62,6 +62,14 @@ class ColourModel {
   virtual bool componentwise() const = 0;
   // Coefficients of a spectrum (a light, a reflectance or a transmittance).
   virtual Eigen::VectorXd project(const Spectrum& s) const = 0;
+  // Coefficients of a per-step transmittance t (0 ≤ t ≤ 1), as every renderer and the model's
+  // training take them: project(t) clamped to [0, 1] per channel. A transmittance cannot exceed
+  // 1, and a projection can (a sharpened basis has negative lobes): a channel of 1.02 would grow
+  // 158-fold over 256 steps, one of −0.1 flip sign every step. With the clamp no channel of T
+  // grows along a ray, however deep the absorption, for any model (issue 40).
+  Eigen::VectorXd projectTransmittance(const Spectrum& t) const {
+    return project(t).cwiseMax(0.0).cwiseMin(1.0);
+  }
   // The k×k matrix that multiplies coefficients by the spectrum s (diagonal when componentwise).
   virtual Eigen::MatrixXd interaction(const Spectrum& s) const = 0;
   // Coefficients of the flat spectrum 1.

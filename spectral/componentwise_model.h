@@ -26,6 +26,7 @@ class ComponentwiseModel final : public ColourModel {
 
   const Eigen::MatrixXd& projection() const { return projection_; }
   const Eigen::MatrixXd& basis() const { return basis_; }
+  const XyzMatrix& spectrumToXyz() const { return spectrum_to_xyz_; }
 
  private:
   Eigen::MatrixXd projection_;  // k×n

@@ -125,6 +125,7 @@ class ProductObjective {
     whites_ = cmf.transpose() * lights;  // Y = 1 for unit-luminance lights
     exact_.resize(3, nl * n * cases);
     scale_.resize(nl * n * cases);
+    weight_.resize(nl * n * cases);
     for (int c = 0; c < cases; ++c) {
       Eigen::MatrixXd filt = refl;
       Eigen::MatrixXd trans = Eigen::MatrixXd::Ones(n_grid, n);
@@ -135,9 +136,11 @@ class ProductObjective {
       for (int l = 0; l < nl; ++l)
         for (int j = 0; j < n; ++j) {
           const int idx = (c * nl + l) * n + j;
-          // Exposure-normalised: scaled so the light filtered by t^m has Y = 1.
+          // Exposure-normalised: scaled so the light filtered by t^m has Y = 1; a depth the
+          // light does not come through visibly counts nothing (weight 0).
           const double y = cmf.col(1).dot(lights.col(l).cwiseProduct(trans.col(j)));
-          scale_[idx] = c == 0 ? 1.0 : 1.0 / y;
+          scale_[idx] = c == 0 ? 1.0 : 1.0 / std::max(y, 1e-300);
+          weight_[idx] = c == 0 || y >= kVisibleDepthY ? 1.0 : 0.0;
           const Xyz xyz = cmf.transpose() * lights.col(l).cwiseProduct(filt.col(j)) * scale_[idx];
           exact_.col(idx) = xyzToLab(xyz, whites_.col(l));
         }
@@ -147,7 +150,7 @@ class ProductObjective {
   }
 
   int parameters() const { return k_ * k_; }
-  int residuals() const { return static_cast<int>(exact_.cols()) * 3 + 2 * k_ * n_; }
+  int residuals() const { return static_cast<int>(exact_.cols()) * 3 + k_ * n_; }
 
   // Residual vector for T = theta (k×k, column-major); nullopt where the model is singular or
   // not finite, which the optimiser treats as an infinitely bad point.
@@ -160,7 +163,9 @@ class ProductObjective {
     const Eigen::VectorXd inv_w = w.cwiseInverse();
     const Eigen::MatrixXd cl = inv_w.asDiagonal() * lu.solve(al_);
     const Eigen::MatrixXd cr = inv_w.asDiagonal() * lu.solve(ar_);
-    const Eigen::MatrixXd ct = inv_w.asDiagonal() * lu.solve(at_);
+    // Per-step transmittances as renderers take them (ColourModel::projectTransmittance).
+    const Eigen::MatrixXd ct =
+        (inv_w.asDiagonal() * lu.solve(at_)).cwiseMax(0.0).cwiseMin(1.0);
     const Eigen::MatrixXd m = cb_ * t * w.asDiagonal();
     const bool full = light_matrix_ == LightMatrixKind::kFull;
     std::vector<Eigen::MatrixXd> m_light;  // full: C · diag(L) · B per light
@@ -179,7 +184,7 @@ class ProductObjective {
         for (int j = 0; j < n_; ++j) {
           const int idx = (c * nl_ + l) * n_ + j;
           const Xyz xyz = pred.col(j) * scale_[idx];
-          r.segment<3>(row) = xyzToLab(xyz, whites_.col(l)) - exact_.col(idx);
+          r.segment<3>(row) = weight_[idx] * (xyzToLab(xyz, whites_.col(l)) - exact_.col(idx));
           row += 3;
         }
       }
@@ -187,9 +192,7 @@ class ProductObjective {
     auto hinge = [](double v) {
       return v < kCoeffLo ? kCoeffLo - v : (v > kCoeffHi ? v - kCoeffHi : 0.0);
     };
-    for (const Eigen::MatrixXd* coeffs : {&cr, &ct})
-      for (Eigen::Index i = 0; i < coeffs->size(); ++i)
-        r[row++] = kBoundWeight * hinge((*coeffs)(i));
+    for (Eigen::Index i = 0; i < cr.size(); ++i) r[row++] = kBoundWeight * hinge(cr(i));
     if (!r.allFinite()) return std::nullopt;
     return r;
   }
@@ -206,7 +209,7 @@ class ProductObjective {
   LightMatrixKind light_matrix_;
   Eigen::MatrixXd al_, ar_, at_, cb_, exact_, whites_;
   std::vector<Eigen::MatrixXd> cb_light_;
-  Eigen::VectorXd a1_, scale_;
+  Eigen::VectorXd a1_, scale_, weight_;
 };
 
 // Levenberg–Marquardt with a forward-difference Jacobian. Hand-written rather than Eigen's
@@ -414,7 +417,8 @@ std::unique_ptr<ComponentwiseModel> trainFactorModel(const Observer& observer,
                                                      const TrainingSet& set, int k,
                                                      FactorVariant variant,
                                                      LightMatrixKind light_matrix,
-                                                     FactorTrainingReport* report) {
+                                                     FactorTrainingReport* report,
+                                                     const Eigen::MatrixXd* previous_basis) {
   StartingSpan span;
   if (light_matrix == LightMatrixKind::kFull) {
     span = lightWeightedSpan(observer, set, k);
@@ -456,6 +460,15 @@ std::unique_ptr<ComponentwiseModel> trainFactorModel(const Observer& observer,
   std::vector<Start> starts{{"sharp", t_equal, equal},
                             {"borders", sharpeningTransform(b0, searched), searched},
                             {"pca", Eigen::MatrixXd::Identity(k, k), {}}};
+  if (previous_basis && previous_basis->rows() == n && previous_basis->cols() == k - 1) {
+    // Nested: the spans are nested (the first k − 1 principal directions are k − 1's), so the
+    // model with one channel fewer is T's first k − 1 columns, B0ᵀ·B_prev up to the white
+    // scale, and the new direction starts as a channel of its own.
+    Eigen::MatrixXd t(k, k);
+    t << b0.transpose() * *previous_basis, Eigen::VectorXd::Unit(k, k - 1);
+    t.colwise().normalize();
+    starts.push_back({"nested", t, {}});
+  }
   std::vector<std::pair<double, const Start*>> finite;
   for (const auto& st : starts) {
     const double v = objective.value(st.t);
@@ -472,8 +485,10 @@ std::unique_ptr<ComponentwiseModel> trainFactorModel(const Observer& observer,
   // converges within 30–130 iterations, so each try has 150.
   constexpr double kMultiStartBudget = 2e5;  // residuals × parameters
   const bool multi_start = double(objective.residuals()) * k * k < kMultiStartBudget;
-  const int max_iterations = multi_start ? 150 : 400;
+  const int max_iterations = multi_start ? 100 : 400;
   std::vector<Start> tries{*finite.front().second};
+  for (const auto& [value, st] : finite)
+    if (st->name == "nested" && st != finite.front().second) tries.push_back(*st);
   if (multi_start) {
     if (finite.size() > 1) tries.push_back(*finite[1].second);
     std::mt19937 rng(12345);
@@ -497,6 +512,71 @@ std::unique_ptr<ComponentwiseModel> trainFactorModel(const Observer& observer,
   rep.objective_final = lm.final;
   rep.iterations = lm.iterations;
   return modelFromTransform(observer, span, lm.t, variant, light_matrix, &rep.white_min_abs);
+}
+
+double trainingSetError(const ColourModel& model, const Observer& observer,
+                        const TrainingSet& set) {
+  checkSet(set);
+  const Eigen::MatrixXd& cmf = observer.weightedCmf();
+  std::vector<int> cases{0};
+  if (!set.absorbers.empty()) cases.insert(cases.end(), set.depths.begin(), set.depths.end());
+  double sum = 0.0;
+  long count = 0;
+  for (const auto& light : set.lights) {
+    const Eigen::MatrixXd to_xyz = model.lightMatrix(light);
+    const Xyz white = observer.xyz(light);
+    for (size_t j = 0; j < set.reflectances.size(); ++j) {
+      const Eigen::VectorXd& refl = set.reflectances[j].values();
+      const Eigen::VectorXd c = model.project(set.reflectances[j]);
+      const Eigen::VectorXd t = set.absorbers.empty()
+                                    ? Eigen::VectorXd()
+                                    : model.projectTransmittance(set.absorbers[j]);
+      for (int m : cases) {
+        Eigen::VectorXd trans = Eigen::VectorXd::Ones(refl.size()), ct = c;
+        if (m > 0) {
+          trans = set.absorbers[j].values().array().pow(m).matrix();
+          ct = c.cwiseProduct(t.array().pow(m).matrix());
+        }
+        const double y = cmf.col(1).dot(light.values().cwiseProduct(trans));
+        if (m > 0 && y < kVisibleDepthY) continue;
+        const double scale = m == 0 ? 1.0 : 1.0 / y;
+        const Xyz exact = cmf.transpose() * light.values().cwiseProduct(refl).cwiseProduct(trans);
+        const Xyz approx = to_xyz * ct;
+        const double de = deltaE2000(xyzToLab(exact * scale, white), xyzToLab(approx * scale, white));
+        if (!std::isfinite(de)) return INFINITY;
+        sum += de;
+        ++count;
+      }
+    }
+  }
+  return count ? sum / double(count) : 0.0;
+}
+
+std::unique_ptr<ComponentwiseModel> withChannelSplit(const ComponentwiseModel& model) {
+  const int k = model.channels();
+  Eigen::MatrixXd projection(k + 1, model.projection().cols());
+  projection << model.projection(), model.projection().row(k - 1);
+  auto split = [k](const auto& columns) {
+    Eigen::MatrixXd out(columns.rows(), k + 1);
+    out << columns, columns.col(k - 1);
+    out.col(k - 1) *= 0.5;
+    out.col(k) *= 0.5;
+    return out;
+  };
+  Eigen::MatrixXd basis = model.basis().size() ? split(model.basis()) : Eigen::MatrixXd();
+  const XyzMatrix to_xyz = split(model.toXyz());
+  return std::make_unique<ComponentwiseModel>(model.kind(), model.variant(), model.grid(),
+                                              projection, to_xyz, basis,
+                                              model.lightMatrixKind(), model.spectrumToXyz());
+}
+
+std::unique_ptr<ComponentwiseModel> bandFactorModel(const Observer& observer, int k,
+                                                    LightMatrixKind light_matrix) {
+  const auto bands = makeSpectralModel(observer, k, light_matrix);
+  return std::make_unique<ComponentwiseModel>(ModelKind::kFactor, "bands", observer.grid(),
+                                              bands->projection(), bands->toXyz(),
+                                              bands->basis(), light_matrix,
+                                              observer.weightedCmf().transpose());
 }
 
 std::unique_ptr<LinearModel> trainLinearModel(const Observer& observer, const TrainingSet& set,

@@ -25,6 +25,29 @@ struct TrainingSet {
   std::vector<int> depths{16, 64, 256};
 };
 
+// A deep product counts in training and in trainingSetError only where the light comes through
+// t^m visibly: its Y at least this, the unfiltered light's being 1 (L* ≈ 1). Below it the image
+// is black whatever the model does, and an exposure-normalised fit to it would spend the
+// model's channels on colours nobody sees.
+constexpr double kVisibleDepthY = 1e-3;
+
+// The mean ΔE2000 over what training fits: every light × reflectance, and every visible deep
+// product light × reflectance × absorber^m (exposure-normalised, ColourModel's clamped
+// transmittance coefficients), Lab against each light's white. Infinite when not finite.
+double trainingSetError(const ColourModel& model, const Observer& observer,
+                        const TrainingSet& set);
+
+// The same model with one channel more: its last channel split into two equal halves (the
+// projection's row repeated, the basis column and toXyz's column halved), so every product and
+// every relit colour is the same. A k-channel candidate that is never worse than k − 1's.
+std::unique_ptr<ComponentwiseModel> withChannelSplit(const ComponentwiseModel& model);
+
+// k equal bands of the grid (spectral:k's band means) as a factor:k candidate: its projection is
+// non-negative, so coefficients of a transmittance stay in [0, 1] without clamping and deep
+// products stay exact in every band's mean. Stable under any absorption, if coarse.
+std::unique_ptr<ComponentwiseModel> bandFactorModel(const Observer& observer, int k,
+                                                    LightMatrixKind light_matrix);
+
 // The deep-absorption absorber of design.md §4: t = 0.97 + 0.03·r, with r a different chip.
 Spectrum weakAbsorber(const Spectrum& reflectance);
 // For each j, a partner index != j drawn with the given seed (a fixed, portable generator).
@@ -64,6 +87,8 @@ struct StartingSpan {
 };
 StartingSpan lightWeightedSpan(const Observer& observer, const TrainingSet& set, int k);
 
+// previous_basis (n × (k−1)), the basis of the same set's model with one channel fewer, adds a
+// nested start: that model plus one new channel.
 // light_matrix: what the model relights with, and so what training fits. Projected: the basis
 // spans the colour signals (light × reflectance) and products with the light's coefficients
 // are fitted; full: the basis spans lightWeightedSpan and products of reflectance and absorbers
@@ -72,7 +97,8 @@ std::unique_ptr<ComponentwiseModel> trainFactorModel(const Observer& observer,
                                                      const TrainingSet& set, int k,
                                                      FactorVariant variant,
                                                      LightMatrixKind light_matrix,
-                                                     FactorTrainingReport* report = nullptr);
+                                                     FactorTrainingReport* report = nullptr,
+                                                     const Eigen::MatrixXd* previous_basis = nullptr);
 std::unique_ptr<LinearModel> trainLinearModel(const Observer& observer, const TrainingSet& set,
                                               int k);
 

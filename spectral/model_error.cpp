@@ -80,7 +80,7 @@ std::vector<ModelErrorRow> evaluateModel(const ColourModel& model, const Observe
       if (diag) {
         c = model.project(set.reflectances[j]);
         if (m > 0) {
-          const Eigen::VectorXd t = model.project(set.absorbers[j]);
+          const Eigen::VectorXd t = model.projectTransmittance(set.absorbers[j]);
           for (int i = 0; i < k; ++i) c[i] *= std::pow(t[i], m);
         }
       } else {

@@ -49,7 +49,7 @@ Entry blend(const std::vector<std::pair<int, double>>& weights, double opacity_f
   e.alpha = 1.0 - std::exp(-step * sigma);
   if (spectral_t) {
     const Spectrum t(model.grid(), (-step * depth).array().exp().matrix());
-    e.transmission = model.project(t);
+    e.transmission = model.projectTransmittance(t);
   } else {
     e.transmission = Eigen::VectorXd::Constant(1, std::exp(-step * depth.mean()));
   }

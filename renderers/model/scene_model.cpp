@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 
 #include "renderers/render/scene_render.h"
 #include "renderers/registry.h"
@@ -18,62 +19,60 @@
 namespace svr {
 namespace {
 
-// The scene's palette as an evaluation set: what the light-independent image holds, under the
-// scene's lights at unit luminance. That is each material's reflectance, seen through its own
-// absorber where it absorbs spectrally (deep products R ⊙ t^m, t its per-step transmission),
-// and the flat white of the specular term (where a material has one) and the backdrop, each
-// seen through every spectral absorber (the image's T ⊙ b). A material that absorbs
-// achromatically pairs with the flat transmission 1, whose deep products are the single ones
-// again; where every material does, T is a scalar (classification.h) that never enters a
-// componentwise product, and a model needs to span only the reflectances. The white enters
-// only for full light matrices: projected ones relight it as the light's own coefficients
-// (P·L), and their span is the paper's, of light × material signals, which a designed palette's
-// projection term was fitted to; taking the lights' own signals too costs those materials more.
-EvaluationSet scenePalette(const Scene& scene, const Observer& observer,
-                           LightMatrixKind light_matrix) {
+// The scene's palette as a training set: what the light-independent image holds, under the
+// scene's lights at unit luminance. That is each material's reflectance, the flat white of the
+// specular term (where a material has one) and the backdrop, each seen directly and through
+// every spectral absorber of the scene (deep products R ⊙ t^m, t a material's per-step
+// transmission), since a ray meets one material behind another's absorption. X-ray materials
+// scatter but do not occlude, so they absorb nothing along a ray. Where no material absorbs
+// spectrally, T is a scalar (classification.h) that never enters a componentwise product, and a
+// model needs to span only the reflectances. The white enters only for full light matrices:
+// projected ones relight it as the light's own coefficients (P·L), and their span is the
+// paper's, of light × material signals, which a designed palette's projection term was fitted
+// to; taking the lights' own signals too costs those materials more.
+TrainingSet scenePalette(const Scene& scene, const Observer& observer,
+                         LightMatrixKind light_matrix) {
   const auto& materials = scene.transfer_function.materials;
   const WavelengthGrid& grid = observer.grid();
   const Spectrum flat(grid, Eigen::VectorXd::Ones(grid.count));
-  std::vector<Spectrum> lights, seen_through, spectral_absorbers;
-  for (const auto& l : scene.lights) lights.push_back(observer.unitLuminance(l.spectrum));
+  TrainingSet set;
+  for (const auto& l : scene.lights) set.lights.push_back(observer.unitLuminance(l.spectrum));
+  std::vector<Spectrum> seen, absorbers;
+  for (const Material& m : materials) seen.push_back(m.reflectance);
   if (light_matrix == LightMatrixKind::kFull &&
       std::any_of(materials.begin(), materials.end(),
                   [](const Material& m) { return m.specular > 0; }))
-    seen_through.push_back(flat);
-  if (scene.background) seen_through.push_back(*scene.background);
-
-  EvaluationSet set{"palette", std::move(lights), {}, {}};
-  auto add = [&](const Spectrum& reflectance, const Spectrum& absorber) {
-    set.reflectances.push_back(reflectance);
-    set.absorbers.push_back(absorber);
-  };
+    seen.push_back(flat);
+  if (scene.background) seen.push_back(*scene.background);
   const double step = scene.stepWorld();
   for (const Material& m : materials) {
-    if (!m.absorption || m.extinction <= 0) {
-      add(m.reflectance, flat);
-      continue;
-    }
+    if (!m.absorption || m.extinction <= 0 || m.xray) continue;
     const Eigen::VectorXd shape = m.absorption->values() / m.absorption->values().mean();
-    spectral_absorbers.emplace_back(grid, (-step * m.extinction * shape).array().exp().matrix());
-    add(m.reflectance, spectral_absorbers.back());
+    // The opacity transfer function and blends scale a material's extinction down: a ray's
+    // steps take t^f for fractions f of the material's own per-step transmission t, and a
+    // projection of t^f is not the f-th power of t's.
+    for (double f : {1.0, 0.25, 1.0 / 16})
+      absorbers.emplace_back(grid, (-f * step * m.extinction * shape).array().exp().matrix());
   }
-  if (spectral_absorbers.empty()) spectral_absorbers.push_back(flat);
-  for (const auto& t : spectral_absorbers)
-    for (const auto& s : seen_through) add(s, t);
+  if (absorbers.empty() || scene.transfer_function.achromatic()) {
+    set.reflectances = seen;
+    set.depths.clear();
+    return set;
+  }
+  // Per-step transmissions range from a few percent to nearly 1: depths from one step to a
+  // thousand cover what a ray crosses, and the invisible ones count nothing (kVisibleDepthY).
+  set.depths = {1, 4, 16, 64, 256, 1024};
+  for (const auto& t : absorbers)
+    for (const auto& s : seen) {
+      set.reflectances.push_back(s);
+      set.absorbers.push_back(t);
+    }
   return set;
-}
-
-double worstMean(const ColourModel& model, const Observer& observer, const EvaluationSet& set) {
-  double worst = 0.0;
-  for (const auto& row : evaluateModel(model, observer, set))
-    if (row.evaluation_case == "product" || row.evaluation_case == "absorb256")
-      worst = std::max(worst, row.stats.finite ? row.stats.mean : INFINITY);
-  return worst;
 }
 
 // Bump when training, its objective, its defaults or the auto rule change: models cached by an
 // older version are then rebuilt rather than reused.
-constexpr int kSceneModelVersion = 3;  // 3: palettes of what the image holds
+constexpr int kSceneModelVersion = 4;  // 4: nested, checked candidates; clamped transmittance
 
 nlohmann::json valuesOf(const std::vector<Spectrum>& spectra) {
   nlohmann::json out = nlohmann::json::array();
@@ -114,19 +113,45 @@ nlohmann::json toCache(const SceneModel& m) {
   return payload;
 }
 
+// factor:k is the best on the scene's palette (trainingSetError) of: the model trained for k,
+// k equal bands (stable under any absorption), and the scene's factor:(k−1) with a channel
+// split (exactly as good as k − 1). So a model never loses to one with fewer channels, or to the
+// bands, on the palette it is made for, and a training that does not converge costs accuracy,
+// never a finite image.
 SceneModel trainSceneModel(const std::string& name, const Scene& scene, const Observer& observer,
-                           const EvaluationSet& palette, const TrainingSet& training) {
-  const LightMatrixKind light_matrix = parseModelName(name).light_matrix;
-  auto describe = [&](int k, double error) {
-    return fmt::format("factor:{} trained on the scene palette ({} lights × {} reflectances, {} "
-                       "light matrices; mean ΔE2000 {:.3f} single/deep)",
-                       k, training.lights.size(), training.reflectances.size(),
-                       toString(light_matrix), error);
-  };
-  const int k = parseModelName(name).k;
-  auto model = trainFactorModel(observer, training, k, FactorVariant::kRefined, light_matrix);
-  const double error = worstMean(*model, observer, palette);
-  return {std::move(model), describe(k, error), name, error};
+                           const TrainingSet& training) {
+  const ModelName parsed = parseModelName(name);
+  const int k = parsed.k;
+  std::vector<std::pair<std::string, std::unique_ptr<ComponentwiseModel>>> candidates;
+  std::optional<SceneModel> previous;
+  const ComponentwiseModel* fewer = nullptr;
+  if (k > 3) {
+    previous = makeSceneModel(ModelName{ModelKind::kFactor, k - 1, parsed.light_matrix}.str(),
+                              scene, observer);
+    fewer = dynamic_cast<const ComponentwiseModel*>(previous->model.get());
+  }
+  try {
+    candidates.emplace_back(
+        "trained", trainFactorModel(observer, training, k, FactorVariant::kRefined,
+                                    parsed.light_matrix, nullptr,
+                                    fewer ? &fewer->basis() : nullptr));
+  } catch (const Error&) {
+    // No finite sharpening of this palette at k: the other candidates stand in.
+  }
+  candidates.emplace_back("bands", bandFactorModel(observer, k, parsed.light_matrix));
+  if (fewer) candidates.emplace_back(fmt::format("factor:{} split", k - 1), withChannelSplit(*fewer));
+  size_t best = 0;
+  std::vector<double> errors;
+  for (size_t i = 0; i < candidates.size(); ++i) {
+    errors.push_back(trainingSetError(*candidates[i].second, observer, training));
+    if (errors[i] < errors[best]) best = i;
+  }
+  const std::string how = fmt::format(
+      "factor:{} ({}) of the scene palette ({} lights × {} reflectances, {} light matrices; "
+      "mean ΔE2000 {:.3f} over its products, deep ones included)",
+      k, candidates[best].first, training.lights.size(), training.reflectances.size(),
+      toString(parsed.light_matrix), errors[best]);
+  return {std::move(candidates[best].second), how, name, errors[best]};
 }
 
 // The smallest factor:k (full light matrices) whose probe error is within the scene's target;
@@ -176,14 +201,19 @@ ModelProbe::ModelProbe(const Scene& scene, const Observer& observer)
 }
 
 double ModelProbe::error(const ColourModel& model) const {
+  const std::vector<double> each = errors(model);
+  return *std::max_element(each.begin(), each.end());
+}
+
+std::vector<double> ModelProbe::errors(const ColourModel& model) const {
   const LightIndependentImage image = render(model);
-  double worst = 0.0;
+  std::vector<double> each;
   for (const auto& light : lights_) {
     const ImageDifference d = compareRelit(image, model, reference_, *reference_model_, light,
                                            observer_.xyz(light), 0.98, scene_.background);
-    worst = std::max(worst, d.stats.finite ? d.stats.mean : INFINITY);
+    each.push_back(d.stats.finite ? d.stats.mean : INFINITY);
   }
-  return worst;
+  return each;
 }
 
 std::string ModelProbe::size() const { return fmt::format("{}×{}", scene_.width, scene_.height); }
@@ -222,11 +252,7 @@ SceneModel makeSceneModel(const std::string& name, const Scene& scene, const Obs
                               "rgb, factor:k, spectral:n or auto", scene.file));
     case ModelKind::kFactor: break;
   }
-  const EvaluationSet palette = scenePalette(scene, observer, parsed.light_matrix);
-  // Deep products of the flat transmission are the single products again: trained once.
-  const std::vector<int> depths =
-      scene.transfer_function.achromatic() ? std::vector<int>{} : std::vector<int>{16, 64, 256};
-  const TrainingSet training{palette.lights, palette.reflectances, palette.absorbers, depths};
+  const TrainingSet training = scenePalette(scene, observer, parsed.light_matrix);
   // Trained once per palette: a second run of the scene reads the model from the disk cache.
   const DiskCache& cache = DiskCache::process();
   const nlohmann::json key = modelKey(name, observer, training);
@@ -238,7 +264,7 @@ SceneModel makeSceneModel(const std::string& name, const Scene& scene, const Obs
       // A well-formed entry whose model does not load is rebuilt like a corrupt one.
     }
   }
-  SceneModel trained = trainSceneModel(name, scene, observer, palette, training);
+  SceneModel trained = trainSceneModel(name, scene, observer, training);
   cache.store("model", key, toCache(trained));
   return trained;
 }

@@ -52,6 +52,9 @@ class ModelProbe {
   ModelProbe(const Scene& scene, const Observer& observer);
   // The worst over lights and mixes of the mean ΔE2000 against spectral:81.
   double error(const ColourModel& model) const;
+  // The mean ΔE2000 against spectral:81 under each light, then each mix (infinite where the
+  // relit image is not finite).
+  std::vector<double> errors(const ColourModel& model) const;
   std::string size() const;  // "96×96"
 
  private:
