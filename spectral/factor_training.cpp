@@ -483,9 +483,9 @@ std::unique_ptr<ComponentwiseModel> trainFactorModel(const Observer& observer,
   // only. Measured on the frog (factor:6): of nine starts (every closed form, six perturbed)
   // six reached the same minimum, none a lower one, and they took 1.0 s; the best start
   // converges within 30–130 iterations, so each try has 150.
-  constexpr double kMultiStartBudget = 2e5;  // residuals × parameters
+  constexpr double kMultiStartBudget = 5e4;  // residuals × parameters
   const bool multi_start = double(objective.residuals()) * k * k < kMultiStartBudget;
-  const int max_iterations = multi_start ? 100 : 400;
+  const int max_iterations = 100;
   std::vector<Start> tries{*finite.front().second};
   for (const auto& [value, st] : finite)
     if (st->name == "nested" && st != finite.front().second) tries.push_back(*st);
