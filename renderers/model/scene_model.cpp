@@ -72,7 +72,7 @@ TrainingSet scenePalette(const Scene& scene, const Observer& observer,
 
 // Bump when training, its objective, its defaults or the auto rule change: models cached by an
 // older version are then rebuilt rather than reused.
-constexpr int kSceneModelVersion = 4;  // 4: nested, checked candidates; clamped transmittance
+constexpr int kSceneModelVersion = 5;  // 5: nested, checked candidates; clamped transmittance
 
 nlohmann::json valuesOf(const std::vector<Spectrum>& spectra) {
   nlohmann::json out = nlohmann::json::array();
@@ -140,11 +140,16 @@ SceneModel trainSceneModel(const std::string& name, const Scene& scene, const Ob
   }
   candidates.emplace_back("bands", bandFactorModel(observer, k, parsed.light_matrix));
   if (fewer) candidates.emplace_back(fmt::format("factor:{} split", k - 1), withChannelSplit(*fewer));
+  // The trained model stands unless another candidate is better by a margin: ties (a palette
+  // the model fits exactly at any k) keep the model trained for k, whose basis is conditioned
+  // for k channels, rather than a chain of splits.
+  constexpr double kMargin = 0.01;  // ΔE2000
   size_t best = 0;
   std::vector<double> errors;
   for (size_t i = 0; i < candidates.size(); ++i) {
     errors.push_back(trainingSetError(*candidates[i].second, observer, training));
-    if (errors[i] < errors[best]) best = i;
+    if (errors[i] < errors[best] - (best == 0 && candidates[0].first == "trained" ? kMargin : 0))
+      best = i;
   }
   const std::string how = fmt::format(
       "factor:{} ({}) of the scene palette ({} lights × {} reflectances, {} light matrices; "

@@ -1,0 +1,81 @@
+// Issue 40's guarantees on a slice of the stress corpus (bench/models/scene_corpus.h, seed 40):
+// scenes written as users write them, with spectral absorbers, many or narrow-band lights,
+// x-ray materials and backdrops. Each test case takes three scenes, so ctest runs them in
+// parallel: six scenes, not the issue's forty, because training every k from 3 to 16 costs
+// 20–60 s a scene here (forty took 14 minutes on two cores; they pass). svr_model_bench
+// (bench/models) measures the whole corpus and prints the shares.
+#include <fmt/format.h>
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <numeric>
+
+#include "bench/models/scene_corpus.h"
+#include "renderers/classification/classification.h"
+#include "renderers/model/scene_model.h"
+#include "renderers/render/scene_render.h"
+#include "spectral/colorimetry.h"
+
+namespace svr {
+namespace {
+
+constexpr int kScenesPerCase = 3;
+constexpr int kSize = 24;  // pixels on a side: the model error shows at any size
+
+struct Corpus {
+  SpectrumLibrary library = SpectrumLibrary::load(SVR_TEST_DATA_DIR, WavelengthGrid::standard());
+  Observer observer = Observer::cie1931(SVR_TEST_DATA_DIR, WavelengthGrid::standard());
+  SceneCorpus corpus{SVR_TEST_DATA_DIR, library, SceneCorpus::kDefaultSeed, kSize};
+};
+
+const Corpus& corpus() {
+  static const Corpus c;
+  return c;
+}
+
+double meanError(const ModelProbe& probe, const ColourModel& model) {
+  const std::vector<double> each = probe.errors(model);
+  return std::accumulate(each.begin(), each.end(), 0.0) / double(each.size());
+}
+
+class ModelCorpus : public testing::TestWithParam<int> {};
+
+// Every factor:k for k = 3…16 trains and renders finite on every scene (goal 2); no channel of a
+// per-step transmittance exceeds 1 or falls below 0, so no channel of T grows along a ray; and the
+// error on the scene's own palette, which training minimises, never grows with k (the nested
+// candidate: factor:(k−1) with a channel split, kept unless the trained one is within 0.01).
+TEST_P(ModelCorpus, EveryModelTrainsRendersFiniteAndIsNestedInK) {
+  const Corpus& c = corpus();
+  for (int i = GetParam(); i < GetParam() + kScenesPerCase; ++i) {
+    SCOPED_TRACE(c.corpus.name(i));
+    const Scene scene = c.corpus.scene(i);
+    const ModelProbe probe(scene, c.observer);
+    const SceneModel rgb = makeSceneModel("rgb", scene, c.observer);
+    EXPECT_TRUE(std::isfinite(meanError(probe, *rgb.model)));
+    double palette_before = INFINITY;
+    for (int k = 3; k <= 16; ++k) {
+      SCOPED_TRACE(k);
+      SceneModel m;
+      ASSERT_NO_THROW(m = makeSceneModel(fmt::format("factor:{}", k), scene, c.observer));
+      const ClassifiedVolume cv = classifyScene(scene, *m.model);
+      for (float t : cv.transmission) {
+        ASSERT_GE(t, 0.0f);
+        ASSERT_LE(t, 1.0f);
+      }
+      EXPECT_TRUE(std::isfinite(meanError(probe, *m.model)));
+      EXPECT_LE(m.palette_de2000, palette_before + 0.01);  // the margin trained models keep
+      palette_before = m.palette_de2000;
+    }
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(Slice, ModelCorpus, testing::Values(20, 30),
+                         [](const testing::TestParamInfo<int>& info) {
+                           return fmt::format("Scenes{}to{}", info.param,
+                                              info.param + kScenesPerCase - 1);
+                         });
+
+}  // namespace
+}  // namespace svr
