@@ -14,7 +14,6 @@
 #include "spectral/observer_key.h"
 #include "base/error.h"
 #include "spectral/factor_training.h"
-#include "spectral/model_error.h"
 
 namespace svr {
 namespace {

@@ -3,9 +3,12 @@
 //   rgb, spectral:n   fixed models;
 //   factor:k          trained on the scene's own palette, what its image holds: its lights ×
 //                     its materials' reflectances, the specular white and the backdrop, with
-//                     deep products through its spectral absorbers (none where all absorb
-//                     achromatically), for full-spectrum light matrices (factor:k/projected:
-//                     for projected ones, the paper's, without the white);
+//                     deep products through every spectral absorber of the scene, at several
+//                     strengths and depths (none where all absorb achromatically), for
+//                     full-spectrum light matrices (factor:k/projected: for projected ones, the
+//                     paper's, without the white); the best on that palette of the model
+//                     trained for k, k equal bands and factor:(k−1) with a channel split, so it
+//                     never loses to fewer channels there and its transmittances stay in [0, 1];
 //   auto              the smallest factor k (3..16, full light matrices) whose relit image
 //                     stays within the scene's model_target: a probe render of the scene
 //                     itself (raycast, 96 pixels on the longer side) against spectral:81, the
