@@ -520,6 +520,23 @@ double trainingSetError(const ColourModel& model, const Observer& observer,
   const Eigen::MatrixXd& cmf = observer.weightedCmf();
   std::vector<int> cases{0};
   if (!set.absorbers.empty()) cases.insert(cases.end(), set.depths.begin(), set.depths.end());
+  // What depends on the pair and the depth but not the light, made once: t^m and the model's
+  // coefficients of R ⊙ t^m.
+  struct Product {
+    Eigen::VectorXd trans, coefficients;
+  };
+  std::vector<std::vector<Product>> products(set.reflectances.size());
+  for (size_t j = 0; j < set.reflectances.size(); ++j) {
+    const Eigen::VectorXd c = model.project(set.reflectances[j]);
+    const Eigen::VectorXd t = set.absorbers.empty()
+                                  ? Eigen::VectorXd()
+                                  : model.projectTransmittance(set.absorbers[j]);
+    for (int m : cases)
+      products[j].push_back(
+          m == 0 ? Product{Eigen::VectorXd::Ones(set.reflectances[j].values().size()), c}
+                 : Product{set.absorbers[j].values().array().pow(m).matrix(),
+                           c.cwiseProduct(t.array().pow(m).matrix())});
+  }
   double sum = 0.0;
   long count = 0;
   for (const auto& light : set.lights) {
@@ -527,21 +544,14 @@ double trainingSetError(const ColourModel& model, const Observer& observer,
     const Xyz white = observer.xyz(light);
     for (size_t j = 0; j < set.reflectances.size(); ++j) {
       const Eigen::VectorXd& refl = set.reflectances[j].values();
-      const Eigen::VectorXd c = model.project(set.reflectances[j]);
-      const Eigen::VectorXd t = set.absorbers.empty()
-                                    ? Eigen::VectorXd()
-                                    : model.projectTransmittance(set.absorbers[j]);
-      for (int m : cases) {
-        Eigen::VectorXd trans = Eigen::VectorXd::Ones(refl.size()), ct = c;
-        if (m > 0) {
-          trans = set.absorbers[j].values().array().pow(m).matrix();
-          ct = c.cwiseProduct(t.array().pow(m).matrix());
-        }
-        const double y = cmf.col(1).dot(light.values().cwiseProduct(trans));
+      for (size_t ci = 0; ci < cases.size(); ++ci) {
+        const int m = cases[ci];
+        const Product& p = products[j][ci];
+        const double y = cmf.col(1).dot(light.values().cwiseProduct(p.trans));
         if (m > 0 && y < kVisibleDepthY) continue;
         const double scale = m == 0 ? 1.0 : 1.0 / y;
-        const Xyz exact = cmf.transpose() * light.values().cwiseProduct(refl).cwiseProduct(trans);
-        const Xyz approx = to_xyz * ct;
+        const Xyz exact = cmf.transpose() * light.values().cwiseProduct(refl).cwiseProduct(p.trans);
+        const Xyz approx = to_xyz * p.coefficients;
         const double de = deltaE2000(xyzToLab(exact * scale, white), xyzToLab(approx * scale, white));
         if (!std::isfinite(de)) return INFINITY;
         sum += de;
@@ -576,7 +586,7 @@ std::unique_ptr<ComponentwiseModel> bandFactorModel(const Observer& observer, in
   return std::make_unique<ComponentwiseModel>(ModelKind::kFactor, "bands", observer.grid(),
                                               bands->projection(), bands->toXyz(),
                                               bands->basis(), light_matrix,
-                                              observer.weightedCmf().transpose());
+                                              bands->spectrumToXyz());
 }
 
 std::unique_ptr<LinearModel> trainLinearModel(const Observer& observer, const TrainingSet& set,

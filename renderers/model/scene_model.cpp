@@ -53,7 +53,7 @@ TrainingSet scenePalette(const Scene& scene, const Observer& observer,
     for (double f : {1.0, 0.25, 1.0 / 16})
       absorbers.emplace_back(grid, (-f * step * m.extinction * shape).array().exp().matrix());
   }
-  if (absorbers.empty() || scene.transfer_function.achromatic()) {
+  if (absorbers.empty()) {
     set.reflectances = seen;
     set.depths.clear();
     return set;
@@ -143,13 +143,11 @@ SceneModel trainSceneModel(const std::string& name, const Scene& scene, const Ob
   // the model fits exactly at any k) keep the model trained for k, whose basis is conditioned
   // for k channels, rather than a chain of splits.
   constexpr double kMargin = 0.01;  // ΔE2000
-  size_t best = 0;
   std::vector<double> errors;
-  for (size_t i = 0; i < candidates.size(); ++i) {
-    errors.push_back(trainingSetError(*candidates[i].second, observer, training));
-    if (errors[i] < errors[best] - (best == 0 && candidates[0].first == "trained" ? kMargin : 0))
-      best = i;
-  }
+  for (const auto& candidate : candidates)
+    errors.push_back(trainingSetError(*candidate.second, observer, training));
+  size_t best = std::min_element(errors.begin(), errors.end()) - errors.begin();
+  if (candidates[0].first == "trained" && errors[0] <= errors[best] + kMargin) best = 0;
   const std::string how = fmt::format(
       "factor:{} ({}) of the scene palette ({} lights × {} reflectances, {} light matrices; "
       "mean ΔE2000 {:.3f} over its products, deep ones included)",
