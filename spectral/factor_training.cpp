@@ -9,6 +9,7 @@
 #include <random>
 
 #include "base/error.h"
+#include "spectral/product_objective.h"
 
 namespace svr {
 
@@ -85,134 +86,8 @@ Eigen::MatrixXd sharpeningTransform(const Eigen::MatrixXd& b0, const std::vector
   return t;
 }
 
-// The product error of the white-normalised model B = B0·T·diag(w), P = diag(w)⁻¹·T⁻¹·P0 over
-// the training set: CIELAB differences (against each light's own white, deep products
-// exposure-normalised), so the least-squares objective weighs errors as ΔE does; plus a hinge
-// on coefficients outside [kCoeffLo, kCoeffHi]. Lab residuals measured better than XYZ ones on
-// the held-out Munsell set (k = 9: 0.56 / 0.87 against 0.64 / 0.99 single / deep). Projected
-// light matrices predict toXyz · (P·L ⊙ P·R ⊙ (P·t)^m); full ones C · diag(L) · B · (P·R ⊙ (P·t)^m).
-class ProductObjective {
- public:
-  static constexpr int kMaxSamples = 1000;  // refinement uses an evenly spaced subset
-  static constexpr double kCoeffLo = -1.0, kCoeffHi = 3.0;  // bounds on reflectance coefficients
-  static constexpr double kBoundWeight = 1.0;
-
-  ProductObjective(const Observer& observer, const TrainingSet& set, const Eigen::MatrixXd& b0,
-                   const Eigen::MatrixXd& p0, LightMatrixKind light_matrix)
-      : k_(static_cast<int>(b0.cols())), depths_(set.depths), light_matrix_(light_matrix) {
-    const int n_all = static_cast<int>(set.reflectances.size());
-    const int n = std::min(n_all, kMaxSamples);
-    const int nl = static_cast<int>(set.lights.size());
-    const int n_grid = static_cast<int>(b0.rows());
-    Eigen::MatrixXd lights(n_grid, nl), refl(n_grid, n), absorb(n_grid, n);
-    for (int l = 0; l < nl; ++l) lights.col(l) = set.lights[l].values();
-    for (int j = 0; j < n; ++j) {
-      const int src = static_cast<int>(static_cast<long>(j) * n_all / n);
-      refl.col(j) = set.reflectances[src].values();
-      absorb.col(j) = set.absorbers.empty() ? set.reflectances[src].values()
-                                            : set.absorbers[src].values();
-    }
-    if (set.absorbers.empty()) depths_.clear();
-    const auto& cmf = observer.weightedCmf();
-    al_ = p0 * lights;
-    ar_ = p0 * refl;
-    at_ = p0 * absorb;
-    a1_ = p0 * Eigen::VectorXd::Ones(n_grid);
-    cb_ = cmf.transpose() * b0;
-    for (int l = 0; l < nl; ++l)
-      cb_light_.push_back(cmf.transpose() * lights.col(l).asDiagonal() * b0);
-    const int cases = 1 + static_cast<int>(depths_.size());
-    whites_ = cmf.transpose() * lights;  // Y = 1 for unit-luminance lights
-    exact_.resize(3, nl * n * cases);
-    scale_.resize(nl * n * cases);
-    weight_.resize(nl * n * cases);
-    for (int c = 0; c < cases; ++c) {
-      Eigen::MatrixXd filt = refl;
-      Eigen::MatrixXd trans = Eigen::MatrixXd::Ones(n_grid, n);
-      if (c > 0) {
-        trans = absorb.array().pow(depths_[c - 1]).matrix();
-        filt = refl.cwiseProduct(trans);
-      }
-      for (int l = 0; l < nl; ++l)
-        for (int j = 0; j < n; ++j) {
-          const int idx = (c * nl + l) * n + j;
-          // Exposure-normalised: scaled so the light filtered by t^m has Y = 1; a depth the
-          // light does not come through visibly counts nothing (weight 0).
-          const double y = cmf.col(1).dot(lights.col(l).cwiseProduct(trans.col(j)));
-          scale_[idx] = c == 0 ? 1.0 : 1.0 / std::max(y, 1e-300);
-          weight_[idx] = c == 0 || y >= kVisibleDepthY ? 1.0 : 0.0;
-          const Xyz xyz = cmf.transpose() * lights.col(l).cwiseProduct(filt.col(j)) * scale_[idx];
-          exact_.col(idx) = xyzToLab(xyz, whites_.col(l));
-        }
-    }
-    nl_ = nl;
-    n_ = n;
-  }
-
-  int parameters() const { return k_ * k_; }
-  int residuals() const { return static_cast<int>(exact_.cols()) * 3 + k_ * n_; }
-
-  // Residual vector for T = theta (k×k, column-major); nullopt where the model is singular or
-  // not finite, which the optimiser treats as an infinitely bad point.
-  std::optional<Eigen::VectorXd> operator()(const Eigen::VectorXd& theta) const {
-    const Eigen::Map<const Eigen::MatrixXd> t(theta.data(), k_, k_);
-    Eigen::PartialPivLU<Eigen::MatrixXd> lu(t);
-    if (!(std::abs(lu.determinant()) > 1e-14)) return std::nullopt;
-    const Eigen::VectorXd w = lu.solve(a1_);
-    if (!w.allFinite() || w.cwiseAbs().minCoeff() < 1e-9) return std::nullopt;
-    const Eigen::VectorXd inv_w = w.cwiseInverse();
-    const Eigen::MatrixXd cl = inv_w.asDiagonal() * lu.solve(al_);
-    const Eigen::MatrixXd cr = inv_w.asDiagonal() * lu.solve(ar_);
-    // Per-step transmittances as renderers take them (ColourModel::projectTransmittance).
-    const Eigen::MatrixXd ct =
-        (inv_w.asDiagonal() * lu.solve(at_)).cwiseMax(0.0).cwiseMin(1.0);
-    const Eigen::MatrixXd m = cb_ * t * w.asDiagonal();
-    const bool full = light_matrix_ == LightMatrixKind::kFull;
-    std::vector<Eigen::MatrixXd> m_light;  // full: C · diag(L) · B per light
-    if (full)
-      for (const auto& cbl : cb_light_) m_light.push_back(cbl * t * w.asDiagonal());
-    Eigen::VectorXd r(residuals());
-    int row = 0;
-    const int cases = 1 + static_cast<int>(depths_.size());
-    for (int c = 0; c < cases; ++c) {
-      const Eigen::MatrixXd filt =
-          c == 0 ? cr : Eigen::MatrixXd(cr.cwiseProduct(ct.array().pow(depths_[c - 1]).matrix()));
-      for (int l = 0; l < nl_; ++l) {
-        const Eigen::MatrixXd pred =
-            full ? Eigen::MatrixXd(m_light[l] * filt)
-                 : Eigen::MatrixXd(m * (cl.col(l).asDiagonal() * filt));  // 3×n
-        for (int j = 0; j < n_; ++j) {
-          const int idx = (c * nl_ + l) * n_ + j;
-          const Xyz xyz = pred.col(j) * scale_[idx];
-          r.segment<3>(row) = weight_[idx] * (xyzToLab(xyz, whites_.col(l)) - exact_.col(idx));
-          row += 3;
-        }
-      }
-    }
-    auto hinge = [](double v) {
-      return v < kCoeffLo ? kCoeffLo - v : (v > kCoeffHi ? v - kCoeffHi : 0.0);
-    };
-    for (Eigen::Index i = 0; i < cr.size(); ++i) r[row++] = kBoundWeight * hinge(cr(i));
-    if (!r.allFinite()) return std::nullopt;
-    return r;
-  }
-
-  double value(const Eigen::MatrixXd& t) const {
-    const Eigen::VectorXd theta = Eigen::Map<const Eigen::VectorXd>(t.data(), t.size());
-    const auto r = (*this)(theta);
-    return r ? r->squaredNorm() : std::numeric_limits<double>::infinity();
-  }
-
- private:
-  int k_, nl_ = 0, n_ = 0;
-  std::vector<int> depths_;
-  LightMatrixKind light_matrix_;
-  Eigen::MatrixXd al_, ar_, at_, cb_, exact_, whites_;
-  std::vector<Eigen::MatrixXd> cb_light_;
-  Eigen::VectorXd a1_, scale_, weight_;
-};
-
-// Levenberg–Marquardt with a forward-difference Jacobian. Hand-written rather than Eigen's
+// Levenberg–Marquardt with ProductObjective's exact Jacobian (issue 40: a forward-difference one
+// took k² evaluations of the objective an iteration, most of training's time). Hand-written rather than Eigen's
 // unsupported LevenbergMarquardt because two things matter here: trial points where the model
 // is singular or overflows must be rejected (not differentiated), and the column-scale gauge
 // of T (white normalisation makes the objective blind to it) is removed after every step.
@@ -243,24 +118,14 @@ LmResult levenbergMarquardt(const ProductObjective& objective, Eigen::MatrixXd t
   const double f0 = f;
   double lambda = 1e-3;
   int it = 0;
-  Eigen::MatrixXd jac(r->size(), np);
+  Eigen::MatrixXd jac;
+  Eigen::VectorXd r_here;
   for (; it < max_iterations; ++it) {
-#pragma omp parallel for schedule(dynamic)
-    for (int p = 0; p < np; ++p) {
-      Eigen::VectorXd shifted = theta;
-      const double h = 1e-7 * std::max(1.0, std::abs(theta[p]));
-      shifted[p] += h;
-      auto rp = objective(shifted);
-      if (!rp) {
-        shifted[p] = theta[p] - h;
-        rp = objective(shifted);
-        jac.col(p) = rp ? Eigen::VectorXd((*r - *rp) / h) : Eigen::VectorXd::Zero(r->size());
-      } else {
-        jac.col(p) = (*rp - *r) / h;
-      }
-    }
-    const Eigen::MatrixXd h = jac.transpose() * jac;
-    const Eigen::VectorXd g = jac.transpose() * *r;
+    if (!objective.evaluate(theta, r_here, &jac)) break;  // finite a moment ago: cannot happen
+    Eigen::MatrixXd lower = Eigen::MatrixXd::Zero(np, np);
+    lower.selfadjointView<Eigen::Lower>().rankUpdate(jac.transpose());  // JᵀJ, half the flops
+    const Eigen::MatrixXd h = lower.selfadjointView<Eigen::Lower>();
+    const Eigen::VectorXd g = jac.transpose() * r_here;
     const double tiny = 1e-12 * h.trace() / np;
     bool improved = false;
     double f_prev = f;
@@ -514,9 +379,16 @@ std::unique_ptr<ComponentwiseModel> trainFactorModel(const Observer& observer,
   return modelFromTransform(observer, span, lm.t, variant, light_matrix, &rep.white_min_abs);
 }
 
+double toXyzCancellation(const XyzMatrix& to_xyz) {
+  const Eigen::Vector3d magnitude = to_xyz.cwiseAbs().rowwise().sum();
+  const Eigen::Vector3d white = to_xyz.rowwise().sum().cwiseAbs();
+  return (magnitude.array() / white.array()).maxCoeff();
+}
+
 double trainingSetError(const ColourModel& model, const Observer& observer,
                         const TrainingSet& set) {
   checkSet(set);
+  if (!(toXyzCancellation(model.toXyz()) <= kMaxCancellation)) return INFINITY;
   const Eigen::MatrixXd& cmf = observer.weightedCmf();
   std::vector<int> cases{0};
   if (!set.absorbers.empty()) cases.insert(cases.end(), set.depths.begin(), set.depths.end());

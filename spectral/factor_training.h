@@ -31,9 +31,20 @@ struct TrainingSet {
 // model's channels on colours nobody sees.
 constexpr double kVisibleDepthY = 1e-3;
 
+// How far a model's colours rest on cancellation: the largest, over X, Y and Z, of
+// Σ_j |toXyz_ij| against |Σ_j toXyz_ij| (the white, whose coefficients are all 1). Renderers
+// accumulate coefficients in float32 (relative rounding 6e-8), so a model that cancels by 1e7
+// fits its palette in double and paints noise: found on issue 40's corpus, a factor:5 with toXyz
+// entries of 8e8 whose palette error was 0.04 and whose image was 27 from spectral:81. Trained
+// models stay below kMaxCancellation (their rounding below 1e-4 of the colour); the ones the
+// scenes and tests trained before measured 1–600.
+constexpr double kMaxCancellation = 1e3;
+double toXyzCancellation(const XyzMatrix& to_xyz);
+
 // The mean ΔE2000 over what training fits: every light × reflectance, and every visible deep
 // product light × reflectance × absorber^m (exposure-normalised, ColourModel's clamped
-// transmittance coefficients), Lab against each light's white. Infinite when not finite.
+// transmittance coefficients), Lab against each light's white. Infinite when not finite or
+// when the model cancels by more than kMaxCancellation.
 double trainingSetError(const ColourModel& model, const Observer& observer,
                         const TrainingSet& set);
 
