@@ -112,20 +112,20 @@ LmResult levenbergMarquardt(const ProductObjective& objective, Eigen::MatrixXd t
   const int k = static_cast<int>(t0.rows());
   const int np = k * k;
   Eigen::VectorXd theta = Eigen::Map<Eigen::VectorXd>(t0.data(), np);
-  auto r = objective(theta);
-  if (!r) return {t0, INFINITY, INFINITY, 0};
-  double f = r->squaredNorm();
+  double f = objective.value(t0);
+  if (!std::isfinite(f)) return {t0, INFINITY, INFINITY, 0};
   const double f0 = f;
   double lambda = 1e-3;
   int it = 0;
   Eigen::MatrixXd jac;
-  Eigen::VectorXd r_here;
+  Eigen::VectorXd r;
   for (; it < max_iterations; ++it) {
-    if (!objective.evaluate(theta, r_here, &jac)) break;  // finite a moment ago: cannot happen
+    if (!objective.evaluate(theta, r, &jac)) break;  // finite a moment ago: cannot happen
+    objective.reweigh(r, jac);
     Eigen::MatrixXd lower = Eigen::MatrixXd::Zero(np, np);
     lower.selfadjointView<Eigen::Lower>().rankUpdate(jac.transpose());  // JᵀJ, half the flops
     const Eigen::MatrixXd h = lower.selfadjointView<Eigen::Lower>();
-    const Eigen::VectorXd g = jac.transpose() * r_here;
+    const Eigen::VectorXd g = jac.transpose() * r;
     const double tiny = 1e-12 * h.trace() / np;
     bool improved = false;
     double f_prev = f;
@@ -136,12 +136,10 @@ LmResult levenbergMarquardt(const ProductObjective& objective, Eigen::MatrixXd t
       Eigen::MatrixXd tn = Eigen::Map<const Eigen::MatrixXd>(theta.data(), k, k) +
                            Eigen::Map<const Eigen::MatrixXd>(step.data(), k, k);
       tn.colwise().normalize();  // remove the column-scale gauge
-      Eigen::VectorXd theta_n = Eigen::Map<Eigen::VectorXd>(tn.data(), np);
-      auto rn = objective(theta_n);
-      if (rn && rn->squaredNorm() < f) {
-        theta = theta_n;
-        r = rn;
-        f = rn->squaredNorm();
+      const double fn = objective.value(tn);
+      if (fn < f) {
+        theta = Eigen::Map<Eigen::VectorXd>(tn.data(), np);
+        f = fn;
         lambda = std::max(lambda / 3.0, 1e-9);
         improved = true;
         break;

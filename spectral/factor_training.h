@@ -75,7 +75,7 @@ std::string toString(FactorVariant v);
 
 struct FactorTrainingReport {
   std::string start;             // starting sharpening the refinement began from
-  double objective_start = 0.0;  // training objective (sum of squared XYZ residuals)
+  double objective_start = 0.0;  // training cost (ProductObjective::cost)
   double objective_final = 0.0;
   int iterations = 0;
   std::vector<double> borders_nm;  // interval borders of the sharpening start

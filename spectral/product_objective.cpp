@@ -192,10 +192,28 @@ std::optional<Eigen::VectorXd> ProductObjective::operator()(const Eigen::VectorX
   return r;
 }
 
+double ProductObjective::cost(const Eigen::VectorXd& r) const {
+  constexpr double c2 = kRobustScale * kRobustScale;
+  const int count = static_cast<int>(products_.size());
+  double sum = 0.0;
+  for (int i = 0; i < count; ++i)
+    sum += 2.0 * c2 * (std::sqrt(1.0 + r.segment<3>(3 * i).squaredNorm() / c2) - 1.0);
+  return sum + r.tail(r.size() - 3 * count).squaredNorm();
+}
+
+void ProductObjective::reweigh(Eigen::VectorXd& r, Eigen::MatrixXd& jacobian) const {
+  constexpr double c2 = kRobustScale * kRobustScale;
+  for (int i = 0; i < static_cast<int>(products_.size()); ++i) {
+    const double root = std::pow(1.0 + r.segment<3>(3 * i).squaredNorm() / c2, -0.25);
+    r.segment<3>(3 * i) *= root;
+    jacobian.middleRows(3 * i, 3) *= root;
+  }
+}
+
 double ProductObjective::value(const Eigen::MatrixXd& t) const {
   const Eigen::VectorXd theta = Eigen::Map<const Eigen::VectorXd>(t.data(), t.size());
   Eigen::VectorXd r;
-  return evaluate(theta, r) ? r.squaredNorm() : std::numeric_limits<double>::infinity();
+  return evaluate(theta, r) ? cost(r) : std::numeric_limits<double>::infinity();
 }
 
 }  // namespace svr
