@@ -71,7 +71,7 @@ TrainingSet scenePalette(const Scene& scene, const Observer& observer,
 
 // Bump when training, its objective, its defaults or the auto rule change: models cached by an
 // older version are then rebuilt rather than reused.
-constexpr int kSceneModelVersion = 6;  // 6: exact Jacobian, bounded cancellation
+constexpr int kSceneModelVersion = 7;  // 7: exact Jacobian, soft-L1 cost, cancellation ≤ 100
 
 nlohmann::json valuesOf(const std::vector<Spectrum>& spectra) {
   nlohmann::json out = nlohmann::json::array();
