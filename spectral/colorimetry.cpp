@@ -62,6 +62,21 @@ Lab xyzToLab(const Xyz& xyz, const Xyz& white) {
   return {116.0 * fy - 16.0, 500.0 * (fx - fy), 200.0 * (fy - fz)};
 }
 
+Eigen::Matrix3d labJacobian(const Xyz& xyz, const Xyz& white) {
+  constexpr double d = 6.0 / 29.0;
+  Eigen::Vector3d fp;  // f'(t) / white
+  for (int i = 0; i < 3; ++i) {
+    const double t = xyz[i] / white[i];
+    const double c = std::cbrt(t);
+    fp[i] = (t > d * d * d ? 1.0 / (3.0 * c * c) : 1.0 / (3.0 * d * d)) / white[i];
+  }
+  Eigen::Matrix3d j;
+  j << 0.0, 116.0 * fp[1], 0.0,  //
+      500.0 * fp[0], -500.0 * fp[1], 0.0,  //
+      0.0, 200.0 * fp[1], -200.0 * fp[2];
+  return j;
+}
+
 double deltaE76(const Lab& a, const Lab& b) { return (a - b).norm(); }
 
 double deltaE2000(const Lab& lab1, const Lab& lab2) {

@@ -38,6 +38,8 @@ double srgbEncode(double linear);  // transfer curve, linear [0,1] → encoded [
 double srgbDecode(double encoded);
 
 Lab xyzToLab(const Xyz& xyz, const Xyz& white);
+// ∂Lab/∂XYZ of xyzToLab at xyz (its f is cbrt above (6/29)³, linear below).
+Eigen::Matrix3d labJacobian(const Xyz& xyz, const Xyz& white);
 double deltaE76(const Lab& a, const Lab& b);
 // CIEDE2000 with kL = kC = kH = 1 (Sharma, Wu & Dalal 2005), symmetric in its arguments.
 double deltaE2000(const Lab& a, const Lab& b);

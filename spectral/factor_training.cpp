@@ -87,7 +87,8 @@ Eigen::MatrixXd sharpeningTransform(const Eigen::MatrixXd& b0, const std::vector
 }
 
 // Levenberg–Marquardt with ProductObjective's exact Jacobian (issue 40: a forward-difference one
-// took k² evaluations of the objective an iteration, most of training's time). Hand-written rather than Eigen's
+// took k² evaluations of the objective an iteration, most of training's time), as iteratively
+// reweighted least squares on its soft-L1 cost. Hand-written rather than Eigen's
 // unsupported LevenbergMarquardt because two things matter here: trial points where the model
 // is singular or overflows must be rejected (not differentiated), and the column-scale gauge
 // of T (white normalisation makes the objective blind to it) is removed after every step.

@@ -48,7 +48,6 @@ ProductObjective::ProductObjective(const Observer& observer, const TrainingSet& 
         products_.push_back({c, l, j, scale, xyzToLab(xyz, whites_.col(l))});
       }
   }
-  nl_ = nl;
   n_ = n;
 }
 
@@ -85,41 +84,20 @@ bool ProductObjective::makeState(const Eigen::VectorXd& theta, State& s) const {
   return true;
 }
 
-namespace {
-
-// d Lab / d XYZ at xyz (CIELAB's f is cbrt above (6/29)³, linear below).
-Eigen::Matrix3d labJacobian(const Xyz& xyz, const Xyz& white) {
-  constexpr double d = 6.0 / 29.0;
-  Eigen::Vector3d fp;
-  for (int i = 0; i < 3; ++i) {
-    const double t = xyz[i] / white[i];
-    const double c = std::cbrt(t);
-    fp[i] = (t > d * d * d ? 1.0 / (3.0 * c * c) : 1.0 / (3.0 * d * d)) / white[i];
-  }
-  Eigen::Matrix3d j;
-  j << 0.0, 116.0 * fp[1], 0.0,  //
-      500.0 * fp[0], -500.0 * fp[1], 0.0,  //
-      0.0, 200.0 * fp[1], -200.0 * fp[2];
-  return j;
-}
-
-}  // namespace
-
 // With v = T⁻¹ e_a and u = T⁻¹ x, ∂u/∂T_ab = −v·u_b; the normalised coefficients c = u / w then
 // move by −w_b (v / w) ⊙ (c_b − c), and M = cb·T·diag(w) by w_b (cb_a e_bᵀ − cb·T·diag(v)).
 // Collecting the product rule over q = cl ⊙ cr ⊙ ct^m, with X = cr ⊙ ct^m, Y = cl ⊙ ct^m,
 // D = m·ct^(m−1) ⊙ cl ⊙ cr where ct is not clamped, and Z = q + ct ⊙ D (full: no cl, Z = ct ⊙ D):
 //   ∂pred/∂T_ab = w_b [cb_a q_b − G·diag(v)(cl_b X + cr_b Y + ct_b D − Z)],  G = cb·T,
 // so all k columns of one b come from four 3×k products G·diag(·)·T⁻¹.
-void ProductObjective::productJacobian(const State& s, const Product& p, const Eigen::Vector3d& xyz,
-                                       Eigen::Ref<Eigen::MatrixXd> rows) const {
+void ProductObjective::productJacobian(const State& s, const Product& p, const Eigen::VectorXd& q,
+                                       const Xyz& xyz, Eigen::Ref<Eigen::MatrixXd> rows) const {
   const int k = k_;
   const bool deep = p.c > 0;
   const Eigen::VectorXd ones = Eigen::VectorXd::Ones(k);
   const Eigen::VectorXd cl = full_ ? ones : Eigen::VectorXd(s.cl.col(p.l));
   const Eigen::VectorXd cr = s.cr.col(p.j);
   const Eigen::VectorXd ctm = deep ? Eigen::VectorXd(s.ctm[p.c - 1].col(p.j)) : ones;
-  const Eigen::VectorXd q = cl.cwiseProduct(cr).cwiseProduct(ctm);
   Eigen::VectorXd d = Eigen::VectorXd::Zero(k);
   if (deep) {
     const int m = depths_[p.c - 1];
@@ -168,28 +146,23 @@ bool ProductObjective::evaluate(const Eigen::VectorXd& theta, Eigen::VectorXd& r
     const Eigen::MatrixXd& g = s.g[full_ ? p.l : 0];
     const Xyz xyz = g * s.w.cwiseProduct(q) * p.scale;
     r.segment<3>(3 * i) = xyzToLab(xyz, whites_.col(p.l)) - p.exact;
-    if (jacobian) productJacobian(s, p, xyz, jacobian->middleRows(3 * i, 3));
+    if (jacobian) productJacobian(s, p, q, xyz, jacobian->middleRows(3 * i, 3));
   }
   // The hinge on reflectance coefficients: ∂c_i/∂T_ab = −w_b (T⁻¹_ia / w_i)(c_b − c_i).
   int row = 3 * count;
   for (int j = 0; j < s.cr.cols(); ++j)
     for (int i = 0; i < k_; ++i, ++row) {
       const double c = s.cr(i, j);
-      const double sign = c < kCoeffLo ? -1.0 : (c > kCoeffHi ? 1.0 : 0.0);
-      r[row] = kBoundWeight * (c < kCoeffLo ? kCoeffLo - c : (c > kCoeffHi ? c - kCoeffHi : 0.0));
-      if (!jacobian || sign == 0.0) continue;
+      const double excess = c < kCoeffLo ? c - kCoeffLo : (c > kCoeffHi ? c - kCoeffHi : 0.0);
+      r[row] = kBoundWeight * std::abs(excess);
+      if (!jacobian || excess == 0.0) continue;
+      const double sign = excess < 0.0 ? -1.0 : 1.0;
       for (int b = 0; b < k_; ++b)
         for (int a = 0; a < k_; ++a)
           (*jacobian)(row, a + b * k_) =
               -kBoundWeight * sign * s.w[b] * s.ti(i, a) / s.w[i] * (s.cr(b, j) - c);
     }
   return r.allFinite() && (!jacobian || jacobian->allFinite());
-}
-
-std::optional<Eigen::VectorXd> ProductObjective::operator()(const Eigen::VectorXd& theta) const {
-  Eigen::VectorXd r;
-  if (!evaluate(theta, r)) return std::nullopt;
-  return r;
 }
 
 double ProductObjective::cost(const Eigen::VectorXd& r) const {

@@ -12,7 +12,6 @@
 // (ColourModel::projectTransmittance).
 
 #include <Eigen/Core>
-#include <optional>
 #include <vector>
 
 #include "spectral/colorimetry.h"
@@ -38,7 +37,6 @@ class ProductObjective {
   // more than kMaxCancellation: the optimiser treats such a point as infinitely bad.
   bool evaluate(const Eigen::VectorXd& theta, Eigen::VectorXd& r,
                 Eigen::MatrixXd* jacobian = nullptr) const;
-  std::optional<Eigen::VectorXd> operator()(const Eigen::VectorXd& theta) const;
 
   // The cost minimised: Σ ρ(|r_p|²) over the products' Lab residuals r_p, with the soft-L1
   // ρ(s) = 2c²(√(1 + s/c²) − 1), c = kRobustScale, plus the hinges squared. ρ is quadratic
@@ -66,10 +64,11 @@ class ProductObjective {
   };
   struct State;  // what one T makes: coefficients, white scale, colour matrices
   bool makeState(const Eigen::VectorXd& theta, State& s) const;
-  void productJacobian(const State& s, const Product& p, const Eigen::Vector3d& xyz,
+  // The three rows of one product, given its q = cl ⊙ cr ⊙ ct^m and its predicted XYZ.
+  void productJacobian(const State& s, const Product& p, const Eigen::VectorXd& q, const Xyz& xyz,
                        Eigen::Ref<Eigen::MatrixXd> rows) const;
 
-  int k_, nl_ = 0, n_ = 0;
+  int k_, n_ = 0;
   std::vector<int> depths_;
   bool full_;
   Eigen::MatrixXd al_, ar_, at_, cb_, whites_;
