@@ -13,6 +13,7 @@ PACKAGES=(
   libgtest-dev libgmock-dev libbenchmark-dev
   libcli11-dev nlohmann-json3-dev libfmt-dev
   zlib1g-dev libteem-dev libssl-dev
+  libnifti2-dev libgdcm-dev libtiff-dev  # volume readers: NIfTI, DICOM series, TIFF stacks
   python3-matplotlib python3-numpy
   clang libclang-rt-14-dev time  # the fuzz preset: clang++ and libFuzzer; CPU seconds (tests/fuzz)
   libvolpack1-dev  # bench/peers: VolPack, the shear-warp peer (small, static)

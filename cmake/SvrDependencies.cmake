@@ -8,6 +8,19 @@ find_package(nlohmann_json 3.11 REQUIRED)
 find_package(fmt REQUIRED)
 find_package(CLI11 CONFIG REQUIRED)
 find_package(ZLIB REQUIRED)
+# The volume readers beyond NRRD and MetaImage (renderers/volume/): NIfTI-1/-2 through
+# nifticlib's nifti2 library, TIFF stacks through libtiff, DICOM series through GDCM.
+# Debian 12's NIFTIConfig.cmake points at /usr/lib/libznz.so.3.0.0, which the package installs
+# under the multiarch folder instead, so the library is found directly.
+find_path(NIFTI_INCLUDE_DIR nifti/nifti2_io.h REQUIRED)
+find_library(NIFTI2_LIBRARY nifti2 REQUIRED)
+find_library(NIFTI_ZNZ_LIBRARY znz REQUIRED)
+add_library(svr_nifti INTERFACE IMPORTED GLOBAL)
+set_target_properties(svr_nifti PROPERTIES
+  INTERFACE_INCLUDE_DIRECTORIES "${NIFTI_INCLUDE_DIR};${NIFTI_INCLUDE_DIR}/nifti"
+  INTERFACE_LINK_LIBRARIES "${NIFTI2_LIBRARY};${NIFTI_ZNZ_LIBRARY};ZLIB::ZLIB;m")
+find_package(TIFF REQUIRED)
+find_package(GDCM CONFIG REQUIRED)
 
 # Debian 12's OpenImageIO config lists a non-existent opencv4 include directory on its imported
 # target; CMake then refuses to build anything that links it. Filter that entry out.

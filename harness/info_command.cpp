@@ -3,6 +3,8 @@
 #include <CLI/CLI.hpp>
 #include <fmt/format.h>
 
+#include <algorithm>
+#include <cmath>
 #include <memory>
 
 #include "harness/command.h"
@@ -12,7 +14,8 @@
 namespace svr {
 
 int runInfo(const InfoOptions& options) {
-  const VolumeLoadOptions load{options.memory_budget, options.raw};
+  VolumeLoadOptions load{options.memory_budget, options.raw};
+  load.spacing = options.spacing;
   const VolumeHeader header = readVolumeHeader(options.path, load);
   const Volume volume = loadVolume(options.path, load);
   fmt::print("{}", describeVolume(header, volume));
@@ -59,8 +62,14 @@ CommandEntry info() {
             auto o = std::make_shared<InfoOptions>();
             auto raw = std::make_shared<RawFlags>();
             auto budget = std::make_shared<std::string>();
-            sub.add_option("FILE", o->path, "volume file: .nrrd, .nhdr, .mhd, .mha, or raw")
+            sub.add_option("FILE", o->path,
+                           "volume file: .nrrd, .nhdr, .mhd, .mha, .nii, .nii.gz, .tif, .tiff, a "
+                           "folder (a DICOM series or numbered TIFFs), or raw")
                 ->required();
+            auto spacing = std::make_shared<std::vector<double>>();
+            auto* spacing_flag = sub.add_option("--spacing", *spacing,
+                                                "TIFF stacks: voxel spacing X,Y,Z (default 1,1,1)")
+                                     ->delimiter(',');
             std::vector<CLI::Option*> raw_flags{
                 sub.add_option("--raw-dims", raw->dims, "headerless raw file: voxels X,Y,Z")
                     ->delimiter(','),
@@ -77,8 +86,18 @@ CommandEntry info() {
             sub.add_option("--memory-budget", *budget,
                            "most bytes of voxels to load, e.g. 512M or 2G (default: the memory "
                            "available now)");
-            sub.callback([o, raw, budget, raw_flags] {
+            sub.callback([o, raw, budget, raw_flags, spacing, spacing_flag] {
               if (!budget->empty()) o->memory_budget = parseByteSize(*budget, "--memory-budget");
+              if (spacing_flag->count() > 0) {
+                const std::vector<double>& v = *spacing;
+                if (v.size() != 3 || !std::all_of(v.begin(), v.end(), [](double x) {
+                      return std::isfinite(x) && x > 0;
+                    }))
+                  throw Error(fmt::format("--spacing: expected three finite values > 0 (X,Y,Z); "
+                                          "got {} values",
+                                          v.size()));
+                o->spacing = glm::dvec3(v[0], v[1], v[2]);
+              }
               std::size_t given = 0;
               for (const auto* flag : raw_flags) given += flag->count();
               if (given > 0) o->raw = rawLayout(*raw, raw_flags[3]->count() > 0, o->path);

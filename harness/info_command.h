@@ -13,6 +13,7 @@ namespace svr {
 struct InfoOptions {
   std::string path;
   std::optional<RawLayout> raw;  // for headerless files
+  std::optional<glm::dvec3> spacing;  // for TIFF stacks
   std::uint64_t memory_budget = defaultMemoryBudget();
 };
 

@@ -52,8 +52,22 @@ SceneVolume loadSceneVolume(const JsonReader& spec, const fs::path& base_dir,
       raw->rejectUnknownKeys();
       opts.raw = layout;
     }
+    if (auto s = spec.find("spacing")) {
+      const auto v = s->numbers(3);
+      for (int a = 0; a < 3; ++a)
+        if (!(v[a] > 0) || !std::isfinite(v[a]))
+          s->fail(fmt::format("spacing {} is {}; it must be finite and > 0", a, v[a]));
+      opts.spacing = glm::dvec3(v[0], v[1], v[2]);
+    }
     spec.rejectUnknownKeys();
-    return {loadVolume(path, opts), path};
+    try {
+      return {loadVolume(path, opts), path};
+    } catch (const Error& e) {
+      // A spacing given for a format that states its own: the key is what to fix.
+      if (opts.spacing && std::string(e.what()).find("states its own spacing") != std::string::npos)
+        spec.at("spacing").fail(e.what());
+      throw;
+    }
   }
   const std::string kind = spec.at("procedural").string();
   const int size = spec.integer("size", 64, 2, 1024);

@@ -6,6 +6,7 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <filesystem>
 
 #include "renderers/volume/memory_budget.h"
 
@@ -62,7 +63,9 @@ std::string describeVolume(const VolumeHeader& header, const Volume& volume) {
   const std::size_t width = bytesPerVoxel(volume.type());
   const auto [lo, hi] = volume.valueRange();
   std::string out = fmt::format("{}\n", header.path);
-  const std::string where = header.data_file == header.path
+  const std::string where = std::filesystem::is_directory(header.path)
+                                ? "voxels in the folder's files"
+                            : header.data_file == header.path
                                 ? "voxels in the same file"
                                 : fmt::format("voxels in {}", header.data_file);
   out += fmt::format("  format      {}, {}\n", header.format, where);
@@ -72,6 +75,8 @@ std::string describeVolume(const VolumeHeader& header, const Volume& volume) {
                      width == 1 ? "one byte per voxel (no byte order)"
                                 : fmt::format("{}-endian in the file", toString(header.endian)));
   out += fmt::format("  encoding    {}\n", header.encoding);
+  if (!header.values.empty()) out += fmt::format("  values      {}\n", header.values);
+  if (!header.orientation.empty()) out += fmt::format("  orientation {}\n", header.orientation);
   out += fmt::format("  spacing     {}\n", triple(volume.spacing()));
   const glm::dvec3 half = 0.5 * volume.extent();
   out += fmt::format("  extent      {} world units, from ({}, {}, {}) to ({}, {}, {})\n",

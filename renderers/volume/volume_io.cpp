@@ -42,20 +42,43 @@ VolumeSource rawSource(const std::string& path, const RawLayout& layout) {
   return source;
 }
 
-// Dispatch on the extension: headers say what they are; anything else needs a raw layout.
+bool endsWith(const std::string& text, const std::string& tail) {
+  return text.size() >= tail.size() && text.compare(text.size() - tail.size(), tail.size(), tail) == 0;
+}
+
+// A folder is a TIFF stack when it holds TIFFs, else a DICOM series.
+bool holdsTiffs(const std::string& folder) {
+  for (const fs::directory_entry& entry : fs::directory_iterator(folder)) {
+    const std::string ext = detail::toLower(entry.path().extension().string());
+    if (ext == ".tif" || ext == ".tiff") return true;
+  }
+  return false;
+}
+
+// Dispatch on the extension (or, for a folder, on what it holds): headers say what they are;
+// anything else needs a raw layout.
 VolumeSource openSource(const std::string& path, const VolumeLoadOptions& options) {
   std::error_code ec;
   const fs::file_status status = fs::status(path, ec);
   if (!fs::exists(status)) throw Error(fmt::format("{}: no such file", path));
-  if (fs::is_directory(status))
-    throw Error(fmt::format("{}: is a folder, not a volume file", path));
+  const std::string name = detail::toLower(fs::path(path).filename().string());
   const std::string extension = detail::toLower(fs::path(path).extension().string());
+  const bool tiff = fs::is_directory(status) ? holdsTiffs(path)
+                                             : extension == ".tif" || extension == ".tiff";
+  if (options.spacing && !tiff)
+    throw Error(fmt::format("{}: states its own spacing (a spacing is given only for TIFF "
+                            "stacks, and in a raw layout)",
+                            path));
+  if (tiff) return detail::readTiffSource(path, options.spacing.value_or(glm::dvec3(1.0)));
+  if (fs::is_directory(status)) return detail::readDicomSource(path);
   if (extension == ".nrrd" || extension == ".nhdr") return detail::readNrrdSource(path, options.memory_budget);
   if (extension == ".mhd" || extension == ".mha") return detail::readMetaImageSource(path, options.memory_budget);
+  if (extension == ".nii" || endsWith(name, ".nii.gz")) return detail::readNiftiSource(path);
   if (options.raw) return rawSource(path, *options.raw);
   throw Error(
-      fmt::format("{}: unknown volume format '{}'; expected .nrrd, .nhdr, .mhd or .mha, "
-                  "or a raw layout (--raw-dims and --raw-type)",
+      fmt::format("{}: unknown volume format '{}'; expected .nrrd, .nhdr, .mhd, .mha, .nii, "
+                  ".nii.gz, .tif, .tiff, a folder (a DICOM series or numbered TIFFs), or a raw "
+                  "layout (--raw-dims and --raw-type)",
                   path, extension));
 }
 
@@ -70,7 +93,7 @@ void swapBytes(std::vector<std::byte>& bytes, std::size_t width) {
 
 VolumeHeader readVolumeHeader(const std::string& path, const VolumeLoadOptions& options) {
   VolumeSource source = openSource(path, options);
-  if (source.header.encoding == "raw") detail::checkRawPayloadSize(source);
+  if (!source.slices && source.header.encoding == "raw") detail::checkRawPayloadSize(source);
   return std::move(source.header);
 }
 
@@ -110,38 +133,78 @@ Volume latticeOf(const Volume& whole, const Dims& samples) {
                 std::move(bytes), whole.source());
 }
 
+namespace {
+
+// The file's voxels of `box` (file order, native byte order, the stored type).
+std::vector<std::byte> readBox(const VolumeSource& source, const VoxelBox& box) {
+  const VolumeHeader& h = source.header;
+  if (source.slices) return detail::readSliceBox(*source.slices, h.dims, box);
+  std::vector<std::byte> bytes = box == VoxelBox{{0, 0, 0}, h.dims}
+                                     ? detail::readPayload(source)
+                                     : detail::readPayloadBox(source, box);
+  const std::size_t width = bytesPerVoxel(h.type);
+  if (width > 1 && h.endian != nativeEndian()) swapBytes(bytes, width);
+  return bytes;
+}
+
+std::vector<std::byte> readLattice(const VolumeSource& source, const LatticeIndices& at) {
+  const VolumeHeader& h = source.header;
+  if (source.slices) return detail::readSliceLattice(*source.slices, h.dims, at);
+  std::vector<std::byte> bytes = detail::readPayloadLattice(source, at);
+  const std::size_t width = bytesPerVoxel(h.type);
+  if (width > 1 && h.endian != nativeEndian()) swapBytes(bytes, width);
+  return bytes;
+}
+
+// File-order voxels of `file_size` to the Volume: reordered to x, y, z and rescaled as the
+// source says.
+Volume finish(const VolumeSource& source, std::vector<std::byte> bytes, const Dims& file_size,
+              const glm::dvec3& spacing, const std::string& path) {
+  const VolumeHeader& h = source.header;
+  bytes = source.axes.reorder(bytes, file_size, bytesPerVoxel(h.type));
+  const Dims size = source.axes.outputDims(file_size);
+  Volume stored(size, spacing, h.type, std::move(bytes), path);
+  if (!source.scale) return stored;
+  std::vector<float> values(stored.voxelCount());
+  for (std::size_t i = 0; i < values.size(); ++i) {
+    values[i] = static_cast<float>(source.scale->slope * stored.value(i) + source.scale->intercept);
+    if (!std::isfinite(values[i]))
+      throw Error(fmt::format("{}: voxel {} is {} once rescaled ({}); not a finite float32", path,
+                              i, values[i], h.values));
+  }
+  return Volume::fromValues(size, spacing, values, path);
+}
+
+}  // namespace
+
 Volume loadVolume(const std::string& path, const VolumeLoadOptions& options) {
   const VolumeSource source = openSource(path, options);
   const VolumeHeader& h = source.header;
-  if (h.encoding == "raw") detail::checkRawPayloadSize(source);
+  if (!source.slices && h.encoding == "raw") detail::checkRawPayloadSize(source);
+  const Dims dims = source.axes.outputDims(h.dims);
+  const glm::dvec3 spacing = source.axes.outputSpacing(h.spacing);
+  const std::size_t out_width = source.scale ? sizeof(float) : bytesPerVoxel(h.type);
   if (options.lattice) {
-    const LatticeIndices at = latticeIndices(h.dims, *options.lattice);
+    const LatticeIndices out_at = latticeIndices(dims, *options.lattice);
+    const LatticeIndices at = source.axes.fileLattice(out_at, h.dims);
     const Dims size{static_cast<int>(at[0].size()), static_cast<int>(at[1].size()),
                     static_cast<int>(at[2].size())};
-    std::vector<std::byte> bytes = detail::readPayloadLattice(source, at);
-    const std::size_t width = bytesPerVoxel(h.type);
-    if (width > 1 && h.endian != nativeEndian()) swapBytes(bytes, width);
-    return Volume(size, latticeSpacing(h.dims, h.spacing, *options.lattice), h.type,
-                  std::move(bytes), path);
+    return finish(source, readLattice(source, at), size,
+                  latticeSpacing(dims, spacing, *options.lattice), path);
   }
   if (options.brick) {
-    const VolumeBrick brick = options.brick(h.dims);
-    const Dims size = brick.stored.size();
-    checkMemoryBudget(brick.stored.voxels() * bytesPerVoxel(h.type), options.memory_budget,
-                      fmt::format("{}: a brick of {}", path, describeShape(size, h.type)));
-    std::vector<std::byte> bytes = detail::readPayloadBox(source, brick.stored);
-    const std::size_t width = bytesPerVoxel(h.type);
-    if (width > 1 && h.endian != nativeEndian()) swapBytes(bytes, width);
-    Volume volume(size, h.spacing, h.type, std::move(bytes), path);
+    const VolumeBrick brick = options.brick(dims);
+    checkMemoryBudget(brick.stored.voxels() * std::max(out_width, bytesPerVoxel(h.type)),
+                      options.memory_budget,
+                      fmt::format("{}: a brick of {}", path, describeShape(brick.stored.size(), h.type)));
+    const VoxelBox box = source.axes.fileBox(brick.stored, h.dims);
+    Volume volume = finish(source, readBox(source, box), box.size(), spacing, path);
     volume.setBrick(brick);
     return volume;
   }
-  checkMemoryBudget(h.data_bytes, options.memory_budget,
-                    fmt::format("{}: {}", path, describeShape(h.dims, h.type)));
-  std::vector<std::byte> bytes = detail::readPayload(source);
-  const std::size_t width = bytesPerVoxel(h.type);
-  if (width > 1 && h.endian != nativeEndian()) swapBytes(bytes, width);
-  return Volume(h.dims, h.spacing, h.type, std::move(bytes), path);
+  checkMemoryBudget(h.data_bytes / bytesPerVoxel(h.type) * std::max(out_width, bytesPerVoxel(h.type)),
+                    options.memory_budget, fmt::format("{}: {}", path, describeShape(dims, h.type)));
+  return finish(source, readBox(source, VoxelBox{{0, 0, 0}, h.dims}), h.dims, spacing, path);
 }
 
 }  // namespace svr

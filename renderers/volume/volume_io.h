@@ -1,6 +1,8 @@
 #pragma once
 // Reading volumes from files: NRRD (attached .nrrd and detached .nhdr, raw or gzip), MetaImage
-// (.mhd/.mha, raw or zlib) and headerless raw files whose layout the caller states. Every
+// (.mhd/.mha, raw or zlib), NIfTI-1/-2 (.nii, .nii.gz), TIFF stacks (a multi-page .tif or a
+// folder of numbered ones), DICOM series (a folder of one series) and headerless raw files whose
+// layout the caller states. NIfTI and DICOM grids are turned to RAS+ (axis_map.h). Every
 // failure is an svr::Error that names the file and what is wrong with it; the memory budget is
 // checked before a byte of voxel data is allocated. Voxels are converted to native byte order.
 
@@ -32,22 +34,31 @@ struct RawLayout {
 // What a volume file says about its voxels, read without reading the voxels.
 struct VolumeHeader {
   std::string path;       // the file asked for
-  std::string format;     // "nrrd" (attached), "nhdr" (detached), "mhd", "mha" or "raw"
-  std::string encoding;   // how the voxels are stored: "raw", "gzip" or "zlib"
+  // "nrrd" (attached), "nhdr" (detached), "mhd", "mha", "nifti-1", "nifti-2", "tiff",
+  // "dicom" or "raw"
+  std::string format;
+  std::string encoding;   // how the voxels are stored: "raw", "gzip", "zlib", or the codec
   std::string data_file;  // the file holding the voxels (== path when they are attached)
-  Dims dims{0, 0, 0};
-  ScalarType type = ScalarType::kUint8;
+  Dims dims{0, 0, 0};                 // as stored (before any reorientation)
+  ScalarType type = ScalarType::kUint8;  // as stored (before any rescaling)
   Endian endian = Endian::kLittle;  // of the stored voxels; native for 1-byte types
   glm::dvec3 spacing{1.0};
   std::uint64_t data_bytes = 0;       // voxel bytes once decompressed
-  std::vector<std::string> comments;  // NRRD '#' lines, MetaImage Comment
+  std::vector<std::string> comments;  // NRRD '#' lines, MetaImage Comment, NIfTI descrip
+  // Set where the format says more: how the file's axes became x, y, z, and how its stored
+  // values became the volume's ("stored × 2 + −1024, as float32").
+  std::string orientation, values;
 };
 
 struct VolumeLoadOptions {
   // Largest voxel payload loadVolume may allocate, in bytes.
   std::uint64_t memory_budget = defaultMemoryBudget();
-  // Layout for files that are not .nrrd/.nhdr/.mhd/.mha; such files are refused without it.
+  // Layout for files that are not .nrrd/.nhdr/.mhd/.mha/.nii/.tif/DICOM; such files are refused
+  // without it.
   std::optional<RawLayout> raw;
+  // Spacing for formats that do not state one (TIFF stacks); 1 when not given. Refused for
+  // formats that state their own.
+  std::optional<glm::dvec3> spacing;
   // A distributed render's process reads one brick: given the file's dims, the brick (and so
   // the voxels, brick.stored) to read. Empty: the whole volume.
   std::function<VolumeBrick(const Dims&)> brick;

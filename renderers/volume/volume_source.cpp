@@ -413,3 +413,35 @@ std::vector<std::byte> readPayloadLattice(const VolumeSource& source, const Latt
 }
 
 }  // namespace svr::detail
+
+namespace svr::detail {
+
+std::vector<std::byte> readSliceBox(const SliceStack& stack, const Dims& dims, const VoxelBox& box) {
+  const std::size_t w = bytesPerVoxel(stack.type());
+  const Dims size = box.size();
+  std::vector<std::byte> out(box.voxels() * w);
+  std::byte* dest = out.data();
+  for (int z = box.lo[2]; z < box.hi[2]; ++z) {
+    const std::vector<std::byte> slice = stack.slice(z);
+    for (int y = box.lo[1]; y < box.hi[1]; ++y)
+      dest = std::copy_n(slice.data() + (static_cast<std::size_t>(y) * dims[0] + box.lo[0]) * w,
+                         static_cast<std::size_t>(size[0]) * w, dest);
+  }
+  return out;
+}
+
+std::vector<std::byte> readSliceLattice(const SliceStack& stack, const Dims& dims,
+                                        const LatticeIndices& at) {
+  const std::size_t w = bytesPerVoxel(stack.type());
+  std::vector<std::byte> out(at[0].size() * at[1].size() * at[2].size() * w);
+  std::byte* dest = out.data();
+  for (const int z : at[2]) {
+    const std::vector<std::byte> slice = stack.slice(z);
+    for (const int y : at[1])
+      for (const int x : at[0])
+        dest = std::copy_n(slice.data() + (static_cast<std::size_t>(y) * dims[0] + x) * w, w, dest);
+  }
+  return out;
+}
+
+}  // namespace svr::detail

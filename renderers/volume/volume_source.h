@@ -8,12 +8,32 @@
 #include <string>
 #include <vector>
 
+#include <memory>
+
+#include "renderers/volume/axis_map.h"
 #include "renderers/volume/volume_io.h"
 
 namespace svr::detail {
 
+// A volume stored as 2-D images, one per z (TIFF pages or files, DICOM files).
+class SliceStack {
+ public:
+  virtual ~SliceStack() = default;
+  // Slice z of the file's grid: dims[0] × dims[1] voxels of `type`, x fastest, native byte order.
+  virtual std::vector<std::byte> slice(int z) const = 0;
+  virtual ScalarType type() const = 0;
+};
+
+// values = slope × stored + intercept, as float32 (NIfTI's scl_slope and scl_inter).
+struct ValueScale {
+  double slope = 1.0, intercept = 0.0;
+};
+
 struct VolumeSource {
   VolumeHeader header;
+  AxisMap axes;                             // file axes → x, y, z
+  std::optional<ValueScale> scale;          // stored → volume values
+  std::shared_ptr<const SliceStack> slices;  // set: voxels come from it, not a payload
   std::uint64_t offset = 0;                       // bytes of header.data_file before the payload
   std::uint64_t skip_decompressed = 0;            // bytes to drop from the decompressed stream
   std::optional<std::uint64_t> compressed_bytes;  // length of the compressed payload, if known
@@ -50,6 +70,14 @@ std::vector<std::byte> readPayloadLattice(const VolumeSource& source, const Latt
 // by mistake fails at once with a clear error instead of being read as text.
 VolumeSource readNrrdSource(const std::string& path, std::uint64_t budget);
 VolumeSource readMetaImageSource(const std::string& path, std::uint64_t budget);
+// nifti_source.cpp, tiff_stack.cpp (a file or a folder of numbered files), dicom_series.cpp.
+VolumeSource readNiftiSource(const std::string& path);
+VolumeSource readTiffSource(const std::string& path, const glm::dvec3& spacing);
+VolumeSource readDicomSource(const std::string& folder);
+// Voxels of `box` from a slice stack, x fastest (slices outside the box's z are not read).
+std::vector<std::byte> readSliceBox(const SliceStack& stack, const Dims& dims, const VoxelBox& box);
+std::vector<std::byte> readSliceLattice(const SliceStack& stack, const Dims& dims,
+                                        const LatticeIndices& at);
 
 // Throws "PATH: line N of the header holds binary data (byte 0x00 at column C) …" when the
 // line has a byte that no text header holds (control characters other than tab and CR).

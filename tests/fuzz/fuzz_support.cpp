@@ -59,6 +59,10 @@ fs::path makeScratchDir() {
   writeBytes(dir / "volume.nhdr", nhdr.data(), nhdr.size());
   const std::string csv = "wavelength_nm,flat,ramp\n380,0.5,0\n580,0.5,0.5\n780,0.5,1\n";
   writeBytes(dir / "spectrum.csv", csv.data(), csv.size());
+  // A good slice of a DICOM series, beside which fuzz_dicom puts its input.
+  fs::create_directory(dir / "series");
+  fs::copy_file(fs::path(SVR_SOURCE_DIR) / "tests/data/formats/series/IM0001.dcm",
+                dir / "series/IM0001.dcm");
   return dir;
 }
 
@@ -81,6 +85,17 @@ std::string writeInput(const std::string& name, const std::uint8_t* data, std::s
   const fs::path path = fs::path(scratchDir()) / name;
   writeBytes(path, data, size);
   return path.string();
+}
+
+int loadFolderInput(const std::string& name, const std::uint8_t* data, std::size_t size) {
+  const fs::path path = writeInput(name, data, size);
+  VolumeLoadOptions options;
+  options.memory_budget = kMemoryBudget;
+  try {
+    loadVolume(path.parent_path().string(), options);
+  } catch (const Error&) {
+  }
+  return 0;
 }
 
 const SpectrumLibrary& library() {

@@ -24,6 +24,7 @@ inline constexpr std::uint64_t kMemoryBudget = std::uint64_t{1} << 20;
 //   data.raw      64 bytes (4×4×4 uint8 0..63)      data.raw.gz  the same, gzip-compressed
 //   data.zlib     the same, zlib-compressed          volume.nhdr  a detached header for data.raw
 //   spectrum.csv  a two-column spectrum table on 380…780 nm
+//   series/       IM0001.dcm, a good slice of tests/data/formats/series
 const std::string& scratchDir();
 
 // Writes the input to scratchDir()/name (replacing it) and returns the path.
@@ -32,6 +33,8 @@ std::string writeInput(const std::string& name, const std::uint8_t* data, std::s
 // Writes the input to scratchDir()/name and loads it as a volume (header, budget check, payload)
 // under kMemoryBudget: the NRRD and MetaImage targets differ only in the name's extension.
 int loadVolumeInput(const std::string& name, const std::uint8_t* data, std::size_t size);
+// Writes the input to scratchDir()/name and loads the folder holding it (a DICOM series).
+int loadFolderInput(const std::string& name, const std::uint8_t* data, std::size_t size);
 const SpectrumLibrary& library();
 const Observer& observer();
 
