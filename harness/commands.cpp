@@ -17,6 +17,7 @@
   X(design)             \
   X(model_error)        \
   X(info)               \
+  X(import_tf)          \
   /* one line per entry, each ending in a backslash */
 
 namespace svr {

@@ -8,9 +8,12 @@
 #include <glm/geometric.hpp>
 #include <map>
 
+#include "renderers/scene/colour_map.h"
+#include "renderers/scene/imported_transfer_function.h"
 #include "renderers/scene/scene_palette.h"
 #include "renderers/scene/scene_volume.h"
 #include "spectral/colour_model.h"
+#include "base/data_dir.h"
 #include "base/error.h"
 #include "base/json_reader.h"
 #include "spectral/light_mixer.h"
@@ -112,6 +115,55 @@ TransferFunction parseTransferFunction(const JsonReader& r, std::vector<Material
   return tf;
 }
 
+// {"paraview": FILE, "preset": NAME} or {"slicer": FILE}, with "range", "unit_distance",
+// "light" and "specular": a colour map from another tool as svr materials.
+TransferFunction importedTransferFunction(const JsonReader& r, const fs::path& base,
+                                          const SpectrumLibrary& library, const Volume& volume) {
+  if (r.contains("paraview") == r.contains("slicer"))
+    r.fail("give one of \"paraview\" (a ParaView JSON preset) or \"slicer\" (a Slicer .vp)");
+  ColourMap map;
+  try {
+    map = r.contains("paraview")
+              ? readParaViewColourMap((base / r.at("paraview").string()).string(),
+                                      r.string("preset", ""))
+              : readSlicerVolumeProperty((base / r.at("slicer").string()).string());
+  } catch (const Error& e) {
+    r.at(r.contains("paraview") ? "paraview" : "slicer").fail(e.what());
+  }
+  if (auto range = r.find("range")) {
+    if (range->isString()) {
+      if (range->string() != "data") range->fail("expected [lo, hi] or \"data\"");
+      const auto [lo, hi] = volume.valueRange();
+      map = map.rescaled(lo, hi);
+    } else {
+      const auto v = range->numbers(2);
+      if (!(v[1] > v[0])) range->fail(fmt::format("[{}, {}] must increase", v[0], v[1]));
+      map = map.rescaled(v[0], v[1]);
+    }
+  }
+  ImportOptions options;
+  options.unit_distance = r.number("unit_distance", 1.0, 1e-9, 1e9);
+  options.light = r.string("light", "D65");
+  if (!library.contains(options.light))
+    r.at("light").fail(fmt::format("unknown light '{}'", options.light));
+  options.specular = r.number("specular", 0.0, 0.0, 1e3);
+  r.rejectUnknownKeys();
+  const Observer observer = Observer::cie1931(defaultDataDir(), library.grid());
+  return importTransferFunction(map, library, observer, options).tf;
+}
+
+// The scene's own materials and transfer function, or a colour map imported from another tool.
+TransferFunction sceneTransferFunction(const JsonReader& root, const fs::path& base,
+                                       const SpectrumLibrary& spectra, const Volume& volume) {
+  const JsonReader tf = root.at("transfer_function");
+  if (!tf.isObject() || !(tf.contains("paraview") || tf.contains("slicer")))
+    return parseTransferFunction(tf, parseMaterials(root.at("materials"), spectra, base));
+  if (root.contains("materials"))
+    root.at("materials").fail("an imported transfer function makes its own materials; leave "
+                              "\"materials\" out");
+  return importedTransferFunction(tf, base, spectra, volume);
+}
+
 Camera parseCamera(const std::optional<JsonReader>& r, const Volume& volume) {
   // Default framing: the bounding sphere fills the view.
   const double diameter = std::max(glm::length(volume.extent()), 1e-9);
@@ -167,8 +219,7 @@ Scene parseScene(const nlohmann::json& json, const std::string& file,
     with_palette = withScenePalette(*palette, base, library);
   const SpectrumLibrary& spectra = with_palette ? *with_palette : library;
 
-  scene.transfer_function = parseTransferFunction(
-      root.at("transfer_function"), parseMaterials(root.at("materials"), spectra, base));
+  scene.transfer_function = sceneTransferFunction(root, base, spectra, scene.volume);
 
   const JsonReader lights = root.at("lights");
   if (!lights.isArray() || lights.size() == 0) lights.fail("needs at least one light");

@@ -16,6 +16,8 @@
 #include <cstring>
 #include <cmath>
 #include <filesystem>
+#include <fstream>
+#include <iterator>
 #include <memory>
 #include <sstream>
 
@@ -65,7 +67,43 @@ std::vector<double> required(const gdcm::StringFilter& filter, const gdcm::File&
   return v;
 }
 
+// GDCM asserts (aborts the process) on some malformed file meta groups (found by fuzz_dicom),
+// so the Part 10 frame is checked first: the 128-byte preamble, "DICM", then group 0002's
+// elements in explicit VR little endian, each with a known VR and a length inside the file.
+void checkPart10Meta(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::vector<unsigned char> b((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  if (b.size() < 132 || std::memcmp(b.data() + 128, "DICM", 4) != 0)
+    throw Error(fmt::format("{}: not a DICOM Part 10 file (no \"DICM\" after the 128-byte "
+                            "preamble)",
+                            path));
+  static const std::string kLongVrs = "OB OD OF OL OV OW SQ SV UC UN UR UT UV";
+  static const std::string kShortVrs =
+      "AE AS AT CS DA DS DT FD FL IS LO LT PN SH SL SS ST TM UI UL US";
+  for (std::size_t at = 132; at + 8 <= b.size();) {
+    const unsigned group = b[at] | b[at + 1] << 8;
+    if (group != 0x0002) return;
+    const std::string vr{static_cast<char>(b[at + 4]), static_cast<char>(b[at + 5])};
+    const bool long_vr = vr[0] >= 'A' && vr[1] >= 'A' && kLongVrs.find(vr) != std::string::npos;
+    if (!long_vr && !(vr[0] >= 'A' && vr[1] >= 'A' && kShortVrs.find(vr) != std::string::npos))
+      throw Error(fmt::format("{}: file meta element at byte {} has VR '{}'", path, at, vr));
+    if (long_vr && at + 12 > b.size()) break;
+    const std::uint64_t length = long_vr ? std::uint64_t{b[at + 8]} | std::uint64_t{b[at + 9]} << 8 |
+                                               std::uint64_t{b[at + 10]} << 16 |
+                                               std::uint64_t{b[at + 11]} << 24
+                                         : std::uint64_t{b[at + 6]} | std::uint64_t{b[at + 7]} << 8;
+    const std::size_t value_at = at + (long_vr ? 12 : 8);
+    if (vr == "SQ" || length == 0xffffffff || value_at + length > b.size())
+      throw Error(fmt::format("{}: file meta element at byte {} ({}) has length {}, past the "
+                              "file's {} bytes or undefined",
+                              path, at, vr, length, b.size()));
+    at = value_at + static_cast<std::size_t>(length);
+  }
+  throw Error(fmt::format("{}: the file ends inside its meta group (no data set)", path));
+}
+
 SliceHeader readSliceHeader(const std::string& path) {
+  checkPart10Meta(path);
   gdcm::Reader reader;
   reader.SetFileName(path.c_str());
   if (!reader.ReadUpToTag(kPixelData))

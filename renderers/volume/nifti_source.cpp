@@ -26,26 +26,46 @@ struct NiftiFree {
   void operator()(nifti_image* image) const { nifti_image_free(image); }
 };
 
-// nifticlib says only "cannot read" for a bad header, so the first field is checked here to say
-// what is wrong: sizeof_hdr is 348 (NIfTI-1) or 540 (NIfTI-2), in either byte order. Returns
-// the version (nifti_image::nifti_type says 1 for both).
-int niftiVersion(const std::string& path) {
+// nifticlib says only "cannot read" for a bad header, and trusts dim[0] (a NIfTI-2 header with
+// dim[0] = 16777212 overflows its stack: found by fuzz_nifti), so sizeof_hdr and the dims are
+// checked here first: sizeof_hdr is 348 (NIfTI-1, int16 dims at byte 40) or 540 (NIfTI-2,
+// int64 dims at byte 16), in either byte order. Returns the version.
+int checkNiftiHeader(const std::string& path) {
   gzFile file = gzopen(path.c_str(), "rb");
   if (!file) throw Error(fmt::format("{}: cannot open: {}", path, std::strerror(errno)));
-  std::array<unsigned char, 4> b{};
-  const int got = gzread(file, b.data(), 4);
+  std::array<unsigned char, 80> b{};
+  const int got = gzread(file, b.data(), static_cast<unsigned>(b.size()));
   gzclose(file);
-  if (got != 4)
+  if (got < 80)
     throw Error(fmt::format("{}: holds {} bytes; a NIfTI header needs 348 (NIfTI-1) or 540 "
                             "(NIfTI-2)",
                             path, got < 0 ? 0 : got));
-  const std::uint32_t little = b[0] | b[1] << 8 | b[2] << 16 | std::uint32_t{b[3]} << 24;
-  const std::uint32_t big = b[3] | b[2] << 8 | b[1] << 16 | std::uint32_t{b[0]} << 24;
-  for (const std::uint32_t size : {little, big})
-    if (size == 348 || size == 540) return size == 348 ? 1 : 2;
+  // The integer of `width` bytes at `at`, little- or big-endian.
+  const auto integer = [&](std::size_t at, int width, bool big) {
+    std::uint64_t v = 0;
+    for (int i = 0; i < width; ++i)
+      v |= std::uint64_t{b[at + static_cast<std::size_t>(big ? width - 1 - i : i)]} << (8 * i);
+    return width == 2 ? static_cast<std::int64_t>(static_cast<std::int16_t>(v))
+           : width == 4 ? static_cast<std::int64_t>(static_cast<std::int32_t>(v))
+                        : static_cast<std::int64_t>(v);
+  };
+  for (const bool big : {false, true}) {
+    const std::int64_t size = integer(0, 4, big);
+    if (size != 348 && size != 540) continue;
+    const int width = size == 348 ? 2 : 8;
+    const std::size_t dims_at = size == 348 ? 40 : 16;
+    const std::int64_t rank = integer(dims_at, width, big);
+    if (rank < 1 || rank > 7)
+      throw Error(fmt::format("{}: dim[0] is {}; expected 1 … 7", path, rank));
+    for (int a = 1; a <= rank; ++a)
+      if (const std::int64_t n = integer(dims_at + static_cast<std::size_t>(a * width), width, big);
+          n < 1)
+        throw Error(fmt::format("{}: dim[{}] is {}; expected ≥ 1", path, a, n));
+    return size == 348 ? 1 : 2;
+  }
   throw Error(fmt::format("{}: sizeof_hdr is {}; a NIfTI file starts with 348 (NIfTI-1) or 540 "
                           "(NIfTI-2): is this a NIfTI file?",
-                          path, little));
+                          path, integer(0, 4, false)));
 }
 
 ScalarType scalarType(const nifti_image& nim, const std::string& path) {
@@ -102,7 +122,7 @@ void readGeometry(const nifti_image& nim, VolumeSource& source) {
 }  // namespace
 
 VolumeSource readNiftiSource(const std::string& path) {
-  const int version = niftiVersion(path);
+  const int version = checkNiftiHeader(path);
   nifti_set_debug_level(0);  // errors are reported here, naming the file, not on stderr
   const std::unique_ptr<nifti_image, NiftiFree> nim(nifti_image_read(path.c_str(), 0));
   if (!nim) throw Error(fmt::format("{}: nifticlib cannot read its NIfTI header", path));

@@ -220,6 +220,11 @@ VolumeSource readTiffSource(const std::string& path, const glm::dvec3& spacing) 
   std::vector<std::string> files = folder ? numberedFiles(path) : std::vector<std::string>{path};
   const TiffPtr first = openTiff(files[0]);
   const int pages = TIFFNumberOfDirectories(first.get());
+  // A directory chain that breaks off (a truncated file) ends the count early with an error,
+  // not quietly: the stack would lose its last pages.
+  if (!tiff_message.empty())
+    throw Error(fmt::format("{}: cannot read past page {} ({}); is the file truncated?", files[0],
+                            pages - 1, tiff_message));
   if (folder && pages != 1)
     throw Error(fmt::format("{}: has {} pages; a folder stack takes one page per file", files[0],
                             pages));
