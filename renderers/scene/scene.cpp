@@ -133,6 +133,12 @@ TransferFunction importedTransferFunction(const JsonReader& r, const fs::path& b
   if (auto range = r.find("range")) {
     if (range->isString()) {
       if (range->string() != "data") range->fail("expected [lo, hi] or \"data\"");
+      // A distributed render's rank holds one brick when the scene loads; the whole volume's
+      // range comes later, and each rank's own would give each a different map.
+      if (volume.brick() && !volume.brick()->whole_range)
+        range->fail("\"data\" needs the whole volume's value range, which a distributed "
+                    "render's rank does not have when the scene loads; give [lo, hi] (svr info "
+                    "prints the range)");
       const auto [lo, hi] = volume.valueRange();
       map = map.rescaled(lo, hi);
     } else {
