@@ -267,7 +267,10 @@ VolumeSource readDicomSource(const std::string& folder) {
     if (!entry.is_regular_file() || name.starts_with(".") || name == "DICOMDIR") continue;
     slices.push_back(readSliceHeader(entry.path().string()));
   }
-  if (slices.empty()) throw Error(fmt::format("{}: holds no files", folder));
+  if (slices.empty())
+    throw Error(fmt::format("{}: is a folder holding no files (a folder is read as a DICOM "
+                            "series or a stack of numbered TIFFs)",
+                            folder));
   const SliceHeader& first = slices.front();
   const glm::dvec3 normal = glm::normalize(glm::cross(first.row, first.column));
   if (!std::isfinite(normal.x))
