@@ -13,11 +13,11 @@
 #include <glm/geometric.hpp>
 
 #include <algorithm>
+#include <array>
 #include <cstring>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
-#include <iterator>
 #include <memory>
 #include <sstream>
 
@@ -71,33 +71,44 @@ std::vector<double> required(const gdcm::StringFilter& filter, const gdcm::File&
 // so the Part 10 frame is checked first: the 128-byte preamble, "DICM", then group 0002's
 // elements in explicit VR little endian, each with a known VR and a length inside the file.
 void checkPart10Meta(const std::string& path) {
+  // Only the preamble and the meta group's element headers are read (a seek past each value):
+  // the pixels that follow are GDCM's to read.
   std::ifstream in(path, std::ios::binary);
-  std::vector<unsigned char> b((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  if (b.size() < 132 || std::memcmp(b.data() + 128, "DICM", 4) != 0)
+  std::error_code ec;
+  const std::uint64_t size = fs::file_size(path, ec);
+  std::array<unsigned char, 12> b{};
+  const auto readAt = [&](std::uint64_t at, std::size_t n) {
+    in.clear();
+    in.seekg(static_cast<std::streamoff>(at));
+    in.read(reinterpret_cast<char*>(b.data()), static_cast<std::streamsize>(n));
+    return static_cast<std::size_t>(in.gcount()) == n;
+  };
+  if (ec || size < 132 || !readAt(128, 4) || std::memcmp(b.data(), "DICM", 4) != 0)
     throw Error(fmt::format("{}: not a DICOM Part 10 file (no \"DICM\" after the 128-byte "
                             "preamble)",
                             path));
   static const std::string kLongVrs = "OB OD OF OL OV OW SQ SV UC UN UR UT UV";
   static const std::string kShortVrs =
       "AE AS AT CS DA DS DT FD FL IS LO LT PN SH SL SS ST TM UI UL US";
-  for (std::size_t at = 132; at + 8 <= b.size();) {
-    const unsigned group = b[at] | b[at + 1] << 8;
+  for (std::uint64_t at = 132; at + 8 <= size;) {
+    readAt(at, static_cast<std::size_t>(std::min<std::uint64_t>(12, size - at)));
+    const unsigned group = b[0] | b[1] << 8;
     if (group != 0x0002) return;
-    const std::string vr{static_cast<char>(b[at + 4]), static_cast<char>(b[at + 5])};
+    const std::string vr{static_cast<char>(b[4]), static_cast<char>(b[5])};
     const bool long_vr = vr[0] >= 'A' && vr[1] >= 'A' && kLongVrs.find(vr) != std::string::npos;
     if (!long_vr && !(vr[0] >= 'A' && vr[1] >= 'A' && kShortVrs.find(vr) != std::string::npos))
       throw Error(fmt::format("{}: file meta element at byte {} has VR '{}'", path, at, vr));
-    if (long_vr && at + 12 > b.size()) break;
-    const std::uint64_t length = long_vr ? std::uint64_t{b[at + 8]} | std::uint64_t{b[at + 9]} << 8 |
-                                               std::uint64_t{b[at + 10]} << 16 |
-                                               std::uint64_t{b[at + 11]} << 24
-                                         : std::uint64_t{b[at + 6]} | std::uint64_t{b[at + 7]} << 8;
-    const std::size_t value_at = at + (long_vr ? 12 : 8);
-    if (vr == "SQ" || length == 0xffffffff || value_at + length > b.size())
+    if (long_vr && at + 12 > size) break;
+    const std::uint64_t length = long_vr ? std::uint64_t{b[8]} | std::uint64_t{b[9]} << 8 |
+                                               std::uint64_t{b[10]} << 16 |
+                                               std::uint64_t{b[11]} << 24
+                                         : std::uint64_t{b[6]} | std::uint64_t{b[7]} << 8;
+    const std::uint64_t value_at = at + (long_vr ? 12 : 8);
+    if (vr == "SQ" || length == 0xffffffff || value_at + length > size)
       throw Error(fmt::format("{}: file meta element at byte {} ({}) has length {}, past the "
                               "file's {} bytes or undefined",
-                              path, at, vr, length, b.size()));
-    at = value_at + static_cast<std::size_t>(length);
+                              path, at, vr, length, size));
+    at = value_at + length;
   }
   throw Error(fmt::format("{}: the file ends inside its meta group (no data set)", path));
 }

@@ -181,9 +181,7 @@ class TiffStack final : public SliceStack {
 std::vector<std::string> numberedFiles(const std::string& folder) {
   std::map<long long, std::string> by_number;
   for (const fs::directory_entry& entry : fs::directory_iterator(folder)) {
-    std::string ext = entry.path().extension().string();
-    std::transform(ext.begin(), ext.end(), ext.begin(), ::tolower);
-    if (!entry.is_regular_file() || (ext != ".tif" && ext != ".tiff")) continue;
+    if (!entry.is_regular_file() || !isTiffName(entry.path().string())) continue;
     const std::string stem = entry.path().stem().string();
     const auto last = std::find_if(stem.rbegin(), stem.rend(), ::isdigit);
     if (last == stem.rend())

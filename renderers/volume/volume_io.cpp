@@ -48,10 +48,8 @@ bool endsWith(const std::string& text, const std::string& tail) {
 
 // A folder is a TIFF stack when it holds TIFFs, else a DICOM series.
 bool holdsTiffs(const std::string& folder) {
-  for (const fs::directory_entry& entry : fs::directory_iterator(folder)) {
-    const std::string ext = detail::toLower(entry.path().extension().string());
-    if (ext == ".tif" || ext == ".tiff") return true;
-  }
+  for (const fs::directory_entry& entry : fs::directory_iterator(folder))
+    if (detail::isTiffName(entry.path().string())) return true;
   return false;
 }
 
@@ -63,8 +61,7 @@ VolumeSource openSource(const std::string& path, const VolumeLoadOptions& option
   if (!fs::exists(status)) throw Error(fmt::format("{}: no such file", path));
   const std::string name = detail::toLower(fs::path(path).filename().string());
   const std::string extension = detail::toLower(fs::path(path).extension().string());
-  const bool tiff = fs::is_directory(status) ? holdsTiffs(path)
-                                             : extension == ".tif" || extension == ".tiff";
+  const bool tiff = fs::is_directory(status) ? holdsTiffs(path) : detail::isTiffName(path);
   if (options.spacing && !tiff)
     throw Error(fmt::format("{}: states its own spacing (a spacing is given only for TIFF "
                             "stacks, and in a raw layout)",
@@ -135,25 +132,25 @@ Volume latticeOf(const Volume& whole, const Dims& samples) {
 
 namespace {
 
-// The file's voxels of `box` (file order, native byte order, the stored type).
-std::vector<std::byte> readBox(const VolumeSource& source, const VoxelBox& box) {
-  const VolumeHeader& h = source.header;
-  if (source.slices) return detail::readSliceBox(*source.slices, h.dims, box);
-  std::vector<std::byte> bytes = box == VoxelBox{{0, 0, 0}, h.dims}
-                                     ? detail::readPayload(source)
-                                     : detail::readPayloadBox(source, box);
+// Payload bytes in the file's byte order, turned to the machine's.
+std::vector<std::byte> nativeOrder(const VolumeHeader& h, std::vector<std::byte> bytes) {
   const std::size_t width = bytesPerVoxel(h.type);
   if (width > 1 && h.endian != nativeEndian()) swapBytes(bytes, width);
   return bytes;
 }
 
+// The file's voxels of `box` (file order, native byte order, the stored type).
+std::vector<std::byte> readBox(const VolumeSource& source, const VoxelBox& box) {
+  const VolumeHeader& h = source.header;
+  if (source.slices) return detail::readSliceBox(*source.slices, h.dims, box);
+  return nativeOrder(h, box == VoxelBox{{0, 0, 0}, h.dims} ? detail::readPayload(source)
+                                                             : detail::readPayloadBox(source, box));
+}
+
 std::vector<std::byte> readLattice(const VolumeSource& source, const LatticeIndices& at) {
   const VolumeHeader& h = source.header;
   if (source.slices) return detail::readSliceLattice(*source.slices, h.dims, at);
-  std::vector<std::byte> bytes = detail::readPayloadLattice(source, at);
-  const std::size_t width = bytesPerVoxel(h.type);
-  if (width > 1 && h.endian != nativeEndian()) swapBytes(bytes, width);
-  return bytes;
+  return nativeOrder(h, detail::readPayloadLattice(source, at));
 }
 
 // File-order voxels of `file_size` to the Volume: reordered to x, y, z and rescaled as the
@@ -183,7 +180,8 @@ Volume loadVolume(const std::string& path, const VolumeLoadOptions& options) {
   if (!source.slices && h.encoding == "raw") detail::checkRawPayloadSize(source);
   const Dims dims = source.axes.outputDims(h.dims);
   const glm::dvec3 spacing = source.axes.outputSpacing(h.spacing);
-  const std::size_t out_width = source.scale ? sizeof(float) : bytesPerVoxel(h.type);
+  // Bytes a voxel takes while it loads: the stored type, and float32 beside it when rescaled.
+  const std::size_t load_width = std::max(source.scale ? sizeof(float) : 0, bytesPerVoxel(h.type));
   if (options.lattice) {
     const LatticeIndices out_at = latticeIndices(dims, *options.lattice);
     const LatticeIndices at = source.axes.fileLattice(out_at, h.dims);
@@ -194,16 +192,15 @@ Volume loadVolume(const std::string& path, const VolumeLoadOptions& options) {
   }
   if (options.brick) {
     const VolumeBrick brick = options.brick(dims);
-    checkMemoryBudget(brick.stored.voxels() * std::max(out_width, bytesPerVoxel(h.type)),
-                      options.memory_budget,
+    checkMemoryBudget(brick.stored.voxels() * load_width, options.memory_budget,
                       fmt::format("{}: a brick of {}", path, describeShape(brick.stored.size(), h.type)));
     const VoxelBox box = source.axes.fileBox(brick.stored, h.dims);
     Volume volume = finish(source, readBox(source, box), box.size(), spacing, path);
     volume.setBrick(brick);
     return volume;
   }
-  checkMemoryBudget(h.data_bytes / bytesPerVoxel(h.type) * std::max(out_width, bytesPerVoxel(h.type)),
-                    options.memory_budget, fmt::format("{}: {}", path, describeShape(dims, h.type)));
+  checkMemoryBudget(h.data_bytes / bytesPerVoxel(h.type) * load_width, options.memory_budget,
+                    fmt::format("{}: {}", path, describeShape(dims, h.type)));
   return finish(source, readBox(source, VoxelBox{{0, 0, 0}, h.dims}), h.dims, spacing, path);
 }
 

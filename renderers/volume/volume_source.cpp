@@ -261,6 +261,11 @@ std::string toLower(std::string text) {
   return text;
 }
 
+bool isTiffName(const std::string& path) {
+  const std::string ext = toLower(fs::path(path).extension().string());
+  return ext == ".tif" || ext == ".tiff";
+}
+
 std::vector<std::string> splitWhitespace(const std::string& text) {
   std::istringstream in(text);
   std::vector<std::string> words;
@@ -411,10 +416,6 @@ std::vector<std::byte> readPayloadLattice(const VolumeSource& source, const Latt
     }
   return out;
 }
-
-}  // namespace svr::detail
-
-namespace svr::detail {
 
 std::vector<std::byte> readSliceBox(const SliceStack& stack, const Dims& dims, const VoxelBox& box) {
   const std::size_t w = bytesPerVoxel(stack.type());

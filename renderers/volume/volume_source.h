@@ -5,10 +5,9 @@
 #include <cstddef>
 #include <cstdint>
 #include <optional>
+#include <memory>
 #include <string>
 #include <vector>
-
-#include <memory>
 
 #include "renderers/volume/axis_map.h"
 #include "renderers/volume/volume_io.h"
@@ -85,6 +84,9 @@ void checkHeaderLineIsText(const std::string& path, const std::string& line, int
 // Throws "PATH: the header runs past B bytes …, over the memory budget" when consumed > budget.
 void checkHeaderWithinBudget(const std::string& path, std::uint64_t consumed,
                              std::uint64_t budget, const char* what_ends_it);
+
+// A .tif or .tiff name, in any case (files of a TIFF stack, and folders that hold them).
+bool isTiffName(const std::string& path);
 
 // Shared header-text helpers.
 std::string trim(const std::string& text);
