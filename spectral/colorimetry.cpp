@@ -54,6 +54,11 @@ double srgbDecode(double e) {
   return e <= 0.04045 ? e / 12.92 : std::pow((e + 0.055) / 1.055, 2.4);
 }
 
+Xyz encodedSrgbToXyz(const Eigen::Vector3d& encoded) {
+  return linearSrgbToXyzMatrix() *
+         Eigen::Vector3d(srgbDecode(encoded.x()), srgbDecode(encoded.y()), srgbDecode(encoded.z()));
+}
+
 Lab xyzToLab(const Xyz& xyz, const Xyz& white) {
   constexpr double d = 6.0 / 29.0;
   auto f = [](double t) { return t > d * d * d ? std::cbrt(t) : t / (3 * d * d) + 4.0 / 29.0; };

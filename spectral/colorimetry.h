@@ -36,6 +36,8 @@ Eigen::Matrix3d xyzToLinearSrgbMatrix();
 Eigen::Matrix3d linearSrgbToXyzMatrix();
 double srgbEncode(double linear);  // transfer curve, linear [0,1] → encoded [0,1]
 double srgbDecode(double encoded);
+// Encoded sRGB (each 0…1) as XYZ, the sRGB white (D65) at Y = 1.
+Xyz encodedSrgbToXyz(const Eigen::Vector3d& encoded);
 
 Lab xyzToLab(const Xyz& xyz, const Xyz& white);
 // ∂Lab/∂XYZ of xyzToLab at xyz (its f is cbrt above (6/29)³, linear below).

@@ -35,9 +35,9 @@ Xyz srgbHexToXyz(const std::string& hex) {
       if (digit < 0) throw Error(fmt::format("'{}' is not an sRGB colour of the form #rrggbb", hex));
       value = value * 16 + digit;
     }
-    rgb[c] = srgbDecode(value / 255.0);
+    rgb[c] = value / 255.0;
   }
-  return linearSrgbToXyzMatrix() * rgb;
+  return encodedSrgbToXyz(rgb);
 }
 
 Xyz labToXyz(const Lab& lab, const Xyz& white) {

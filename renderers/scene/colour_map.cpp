@@ -7,28 +7,16 @@
 #include <numbers>
 
 #include "spectral/colorimetry.h"
+#include "spectral/design_palette.h"
 
 namespace svr {
 
 namespace {
 
-Eigen::Vector3d srgbToLab(const Eigen::Vector3d& srgb) {
-  const Eigen::Vector3d linear(srgbDecode(srgb.x()), srgbDecode(srgb.y()), srgbDecode(srgb.z()));
-  const Eigen::Matrix3d to_xyz = linearSrgbToXyzMatrix();
-  return xyzToLab(to_xyz * linear, to_xyz * Eigen::Vector3d::Ones());
-}
+Xyz srgbWhite() { return encodedSrgbToXyz(Eigen::Vector3d::Ones()); }
 
 Eigen::Vector3d labToSrgb(const Eigen::Vector3d& lab) {
-  const Eigen::Matrix3d to_xyz = linearSrgbToXyzMatrix();
-  const Eigen::Vector3d white = to_xyz * Eigen::Vector3d::Ones();
-  const auto f_inv = [](double t) {
-    constexpr double d = 6.0 / 29.0;
-    return t > d ? t * t * t : 3 * d * d * (t - 4.0 / 29.0);
-  };
-  const double fy = (lab.x() + 16) / 116;
-  const Eigen::Vector3d xyz(white.x() * f_inv(fy + lab.y() / 500), white.y() * f_inv(fy),
-                            white.z() * f_inv(fy - lab.z() / 200));
-  const Eigen::Vector3d linear = xyzToLinearSrgbMatrix() * xyz;
+  const Eigen::Vector3d linear = xyzToLinearSrgbMatrix() * labToXyz(lab, srgbWhite());
   return {srgbEncode(std::clamp(linear.x(), 0.0, 1.0)), srgbEncode(std::clamp(linear.y(), 0.0, 1.0)),
           srgbEncode(std::clamp(linear.z(), 0.0, 1.0))};
 }
@@ -80,7 +68,7 @@ double adjustHue(const Eigen::Vector3d& saturated, double m_unsaturated) {
 }
 
 Eigen::Vector3d divergingBlend(const Eigen::Vector3d& a, const Eigen::Vector3d& b, double t) {
-  Eigen::Vector3d m1 = labToMsh(srgbToLab(a)), m2 = labToMsh(srgbToLab(b));
+  Eigen::Vector3d m1 = labToMsh(srgbLab(a)), m2 = labToMsh(srgbLab(b));
   if (m1.y() > 0.05 && m2.y() > 0.05 && std::abs(m1.z() - m2.z()) > std::numbers::pi / 3) {
     const double mid = std::max({m1.x(), m2.x(), 88.0});
     if (t < 0.5) m2 = {mid, 0, 0}, t *= 2;
@@ -96,7 +84,7 @@ Eigen::Vector3d blend(ColourSpace space, const Eigen::Vector3d& a, const Eigen::
   switch (space) {
     case ColourSpace::kRgb: return (1 - t) * a + t * b;
     case ColourSpace::kStep: return a;
-    case ColourSpace::kLab: return labToSrgb((1 - t) * srgbToLab(a) + t * srgbToLab(b));
+    case ColourSpace::kLab: return labToSrgb((1 - t) * srgbLab(a) + t * srgbLab(b));
     case ColourSpace::kDiverging: return divergingBlend(a, b, t);
     case ColourSpace::kHsv: {
       Eigen::Vector3d ha = rgbToHsv(a), hb = rgbToHsv(b);
@@ -123,27 +111,37 @@ double shapedAlpha(const OpacityPoint& a, const OpacityPoint& b, double x) {
   return std::clamp(h1 * a.alpha + h2 * b.alpha + (h3 + h4) * slope, 0.0, 1.0);
 }
 
+// The points either side of x, strictly inside the points' range, and x's place between them.
+template <typename Point>
+struct Segment {
+  const Point& a;
+  const Point& b;
+  double t;
+};
+template <typename Point>
+Segment<Point> segmentAt(const std::vector<Point>& points, double x) {
+  const auto hi = std::upper_bound(points.begin(), points.end(), x,
+                                   [](double v, const Point& p) { return v < p.x; });
+  return {*(hi - 1), *hi, (x - (hi - 1)->x) / (hi->x - (hi - 1)->x)};
+}
+
 }  // namespace
+
+Lab srgbLab(const Eigen::Vector3d& srgb) { return xyzToLab(encodedSrgbToXyz(srgb), srgbWhite()); }
 
 Eigen::Vector3d ColourMap::colourAt(double x) const {
   if (x <= colours.front().x) return colours.front().srgb;
   if (x >= colours.back().x) return colours.back().srgb;
-  const auto hi = std::upper_bound(colours.begin(), colours.end(), x,
-                                   [](double v, const ColourPoint& p) { return v < p.x; });
-  const ColourPoint& a = *(hi - 1);
-  const ColourPoint& b = *hi;
-  return blend(space, a.srgb, b.srgb, (x - a.x) / (b.x - a.x));
+  const auto [a, b, t] = segmentAt(colours, x);
+  return blend(space, a.srgb, b.srgb, t);
 }
 
 double ColourMap::alphaAt(double x) const {
   if (opacity.empty()) return 1.0;
   if (x <= opacity.front().x) return opacity.front().alpha;
   if (x >= opacity.back().x) return opacity.back().alpha;
-  const auto hi = std::upper_bound(opacity.begin(), opacity.end(), x,
-                                   [](double v, const OpacityPoint& p) { return v < p.x; });
-  const OpacityPoint& a = *(hi - 1);
-  const OpacityPoint& b = *hi;
-  return shapedAlpha(a, b, (x - a.x) / (b.x - a.x));
+  const auto [a, b, t] = segmentAt(opacity, x);
+  return shapedAlpha(a, b, t);
 }
 
 ColourMap ColourMap::rescaled(double lo, double hi) const {

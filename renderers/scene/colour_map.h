@@ -41,6 +41,9 @@ struct ColourMap {
   ColourMap rescaled(double lo, double hi) const;
 };
 
+// Encoded sRGB as CIELAB against the sRGB white (D65, Y = 1): how far two map colours are apart.
+Eigen::Vector3d srgbLab(const Eigen::Vector3d& srgb);
+
 // ParaView's JSON (an exported preset: an array of objects, or one object) with "RGBPoints"
 // (flat x, r, g, b), optional "Points" (flat x, α, midpoint, sharpness) and "ColorSpace"
 // ("RGB", "HSV", "Lab", "CIELAB", "Diverging", "Step"). `preset` picks one of several by Name

@@ -17,12 +17,7 @@ constexpr int kSamplesPerSegment = 32;
 constexpr double kMaxAlpha = 0.999;
 constexpr double kOpacityTolerance = 0.002;  // of the σ share, when thinning the curve
 
-Xyz srgbXyz(const Eigen::Vector3d& srgb) {
-  const Eigen::Vector3d linear(srgbDecode(srgb.x()), srgbDecode(srgb.y()), srgbDecode(srgb.z()));
-  return linearSrgbToXyzMatrix() * linear;
-}
-
-Xyz srgbWhite() { return linearSrgbToXyzMatrix() * Eigen::Vector3d::Ones(); }
+Xyz srgbWhite() { return encodedSrgbToXyz(Eigen::Vector3d::Ones()); }
 
 // x of every control point and kSamplesPerSegment − 1 between each two.
 template <typename Point>
@@ -37,18 +32,14 @@ std::vector<double> denseSamples(const std::vector<Point>& points) {
   return xs;
 }
 
-// The fewest samples (always the first and last) between which a linear blend of XYZ stays
-// within `tolerance` ΔE2000 of every sample.
-std::vector<std::size_t> colourKnots(const std::vector<double>& xs, const std::vector<Xyz>& xyz,
-                                     double tolerance) {
-  const Xyz white = srgbWhite();
+// The fewest samples (always the first and last) such that a straight line between two kept
+// ones is close enough at every sample between: close(a, m, b, t) for sample m, a fraction t of
+// the way from a to b. Greedy: from each kept sample, the farthest one that still fits.
+template <typename Close>
+std::vector<std::size_t> linearKnots(const std::vector<double>& xs, const Close& close) {
   const auto fits = [&](std::size_t a, std::size_t b) {
-    for (std::size_t m = a + 1; m < b; ++m) {
-      const double t = (xs[m] - xs[a]) / (xs[b] - xs[a]);
-      if (deltaE2000(xyzToLab((1 - t) * xyz[a] + t * xyz[b], white), xyzToLab(xyz[m], white)) >
-          tolerance)
-        return false;
-    }
+    for (std::size_t m = a + 1; m < b; ++m)
+      if (!close(a, m, b, (xs[m] - xs[a]) / (xs[b] - xs[a]))) return false;
     return true;
   };
   std::vector<std::size_t> knots{0};
@@ -58,6 +49,16 @@ std::vector<std::size_t> colourKnots(const std::vector<double>& xs, const std::v
     knots.push_back(b);
   }
   return knots;
+}
+
+// Knots between which a linear blend of XYZ stays within `tolerance` ΔE2000 of every sample.
+std::vector<std::size_t> colourKnots(const std::vector<double>& xs, const std::vector<Xyz>& xyz,
+                                     double tolerance) {
+  const Xyz white = srgbWhite();
+  return linearKnots(xs, [&](std::size_t a, std::size_t m, std::size_t b, double t) {
+    return deltaE2000(xyzToLab((1 - t) * xyz[a] + t * xyz[b], white), xyzToLab(xyz[m], white)) <=
+           tolerance;
+  });
 }
 
 // One reflectance per knot colour, designed under the light (physical bounds: 0 ≤ r ≤ 1). The
@@ -95,30 +96,17 @@ std::vector<std::pair<double, double>> opacityCurve(const ColourMap& map, double
   std::vector<double> sigma;
   for (const double x : xs) sigma.push_back(sigmaOf(map.alphaAt(x), unit_distance));
   sigma_max = *std::max_element(sigma.begin(), sigma.end());
-  std::vector<std::pair<double, double>> curve;
   const auto share = [&](std::size_t i) { return sigma_max > 0 ? sigma[i] / sigma_max : 0.0; };
-  std::size_t from = 0;
-  curve.emplace_back(xs[0], share(0));
-  while (from + 1 < xs.size()) {
-    std::size_t to = from + 1;
-    const auto fits = [&](std::size_t b) {
-      for (std::size_t m = from + 1; m < b; ++m) {
-        const double t = (xs[m] - xs[from]) / (xs[b] - xs[from]);
-        if (std::abs((1 - t) * share(from) + t * share(b) - share(m)) > kOpacityTolerance)
-          return false;
-      }
-      return true;
-    };
-    while (to + 1 < xs.size() && fits(to + 1)) ++to;
-    curve.emplace_back(xs[to], share(to));
-    from = to;
-  }
+  std::vector<std::pair<double, double>> curve;
+  for (const std::size_t k :
+       linearKnots(xs, [&](std::size_t a, std::size_t m, std::size_t b, double t) {
+         return std::abs((1 - t) * share(a) + t * share(b) - share(m)) <= kOpacityTolerance;
+       }))
+    curve.emplace_back(xs[k], share(k));
   return curve;
 }
 
 }  // namespace
-
-Lab srgbLab(const Eigen::Vector3d& srgb) { return xyzToLab(srgbXyz(srgb), srgbWhite()); }
 
 Lab transferFunctionLab(const TransferFunction& tf, double x, const Spectrum& light,
                         const Observer& observer) {
@@ -140,7 +128,7 @@ ImportedTransferFunction importTransferFunction(const ColourMap& map,
   const NamedSpectrum light{options.light, library.get(options.light)};
   const std::vector<double> xs = denseSamples(map.colours);
   std::vector<Xyz> xyz;
-  for (const double x : xs) xyz.push_back(srgbXyz(map.colourAt(x)));
+  for (const double x : xs) xyz.push_back(encodedSrgbToXyz(map.colourAt(x)));
   const std::vector<std::size_t> knots = colourKnots(xs, xyz, options.blend_de2000);
 
   ImportedTransferFunction out;

@@ -54,7 +54,5 @@ ImportedTransferFunction importTransferFunction(const ColourMap& map,
 // as CIELAB against that white: what a view lit only by ambient light shows of an opaque slab.
 Lab transferFunctionLab(const TransferFunction& tf, double x, const Spectrum& light,
                         const Observer& observer);
-// The map's encoded sRGB as CIELAB against the sRGB white (D65, Y = 1).
-Lab srgbLab(const Eigen::Vector3d& srgb);
 
 }  // namespace svr
