@@ -9,18 +9,20 @@
 #include <gdcmImageReader.h>
 #include <gdcmReader.h>
 #include <gdcmStringFilter.h>
+#include <gdcmTrace.h>
 
 #include <glm/geometric.hpp>
 
 #include <algorithm>
-#include <array>
 #include <cstring>
 #include <cmath>
 #include <filesystem>
-#include <fstream>
 #include <memory>
+#include <mutex>
 #include <sstream>
 
+#include "renderers/volume/dicom_structure.h"
+#include "renderers/volume/memory_budget.h"
 #include "renderers/volume/volume_source.h"
 #include "base/error.h"
 
@@ -34,14 +36,14 @@ const gdcm::Tag kPixelData(0x7fe0, 0x0010), kSeriesUid(0x0020, 0x000e),
     kPosition(0x0020, 0x0032), kOrientation(0x0020, 0x0037), kRows(0x0028, 0x0010),
     kColumns(0x0028, 0x0011), kPixelSpacing(0x0028, 0x0030), kSlope(0x0028, 0x1053),
     kIntercept(0x0028, 0x1052), kFrames(0x0028, 0x0008), kSamples(0x0028, 0x0002),
-    kThickness(0x0018, 0x0050);
+    kThickness(0x0018, 0x0050), kBitsAllocated(0x0028, 0x0100);
 
 // One file's header, up to its pixels.
 struct SliceHeader {
   std::string file, series;
   glm::dvec3 position{0.0}, row{0.0}, column{0.0};
   double pixel_spacing[2]{1.0, 1.0};  // between rows (y), between columns (x)
-  int rows = 0, columns = 0;
+  int rows = 0, columns = 0, bits_allocated = 0;
   double slope = 1.0, intercept = 0.0, thickness = 0.0;
   double along = 0.0;  // position · normal
 };
@@ -67,54 +69,16 @@ std::vector<double> required(const gdcm::StringFilter& filter, const gdcm::File&
   return v;
 }
 
-// GDCM asserts (aborts the process) on some malformed file meta groups (found by fuzz_dicom),
-// so the Part 10 frame is checked first: the 128-byte preamble, "DICM", then group 0002's
-// elements in explicit VR little endian, each with a known VR and a length inside the file.
-void checkPart10Meta(const std::string& path) {
-  // Only the preamble and the meta group's element headers are read (a seek past each value):
-  // the pixels that follow are GDCM's to read.
-  std::ifstream in(path, std::ios::binary);
-  std::error_code ec;
-  const std::uint64_t size = fs::file_size(path, ec);
-  std::array<unsigned char, 12> b{};
-  const auto readAt = [&](std::uint64_t at, std::size_t n) {
-    in.clear();
-    in.seekg(static_cast<std::streamoff>(at));
-    in.read(reinterpret_cast<char*>(b.data()), static_cast<std::streamsize>(n));
-    return static_cast<std::size_t>(in.gcount()) == n;
-  };
-  if (ec || size < 132 || !readAt(128, 4) || std::memcmp(b.data(), "DICM", 4) != 0)
-    throw Error(fmt::format("{}: not a DICOM Part 10 file (no \"DICM\" after the 128-byte "
-                            "preamble)",
-                            path));
-  static const std::string kLongVrs = "OB OD OF OL OV OW SQ SV UC UN UR UT UV";
-  static const std::string kShortVrs =
-      "AE AS AT CS DA DS DT FD FL IS LO LT PN SH SL SS ST TM UI UL US";
-  for (std::uint64_t at = 132; at + 8 <= size;) {
-    readAt(at, static_cast<std::size_t>(std::min<std::uint64_t>(12, size - at)));
-    const unsigned group = b[0] | b[1] << 8;
-    if (group != 0x0002) return;
-    const std::string vr{static_cast<char>(b[4]), static_cast<char>(b[5])};
-    const bool long_vr = vr[0] >= 'A' && vr[1] >= 'A' && kLongVrs.find(vr) != std::string::npos;
-    if (!long_vr && !(vr[0] >= 'A' && vr[1] >= 'A' && kShortVrs.find(vr) != std::string::npos))
-      throw Error(fmt::format("{}: file meta element at byte {} has VR '{}'", path, at, vr));
-    if (long_vr && at + 12 > size) break;
-    const std::uint64_t length = long_vr ? std::uint64_t{b[8]} | std::uint64_t{b[9]} << 8 |
-                                               std::uint64_t{b[10]} << 16 |
-                                               std::uint64_t{b[11]} << 24
-                                         : std::uint64_t{b[6]} | std::uint64_t{b[7]} << 8;
-    const std::uint64_t value_at = at + (long_vr ? 12 : 8);
-    if (vr == "SQ" || length == 0xffffffff || value_at + length > size)
-      throw Error(fmt::format("{}: file meta element at byte {} ({}) has length {}, past the "
-                              "file's {} bytes or undefined",
-                              path, at, vr, length, size));
-    at = value_at + length;
-  }
-  throw Error(fmt::format("{}: the file ends inside its meta group (no data set)", path));
+// Rows, Columns and BitsAllocated are US: 1 … 65535 (a fuzzed VR may say otherwise).
+int unsignedShort(double value, const char* name, const std::string& path) {
+  if (!(value >= 1 && value <= 65535 && value == std::floor(value)))
+    throw Error(fmt::format("{}: {} is {}; expected a whole number in 1 … 65535", path, name,
+                            value));
+  return static_cast<int>(value);
 }
 
 SliceHeader readSliceHeader(const std::string& path) {
-  checkPart10Meta(path);
+  checkDicomStructure(path);
   gdcm::Reader reader;
   reader.SetFileName(path.c_str());
   if (!reader.ReadUpToTag(kPixelData))
@@ -136,8 +100,11 @@ SliceHeader readSliceHeader(const std::string& path) {
   const auto p = required(filter, file, kPosition, 3, "ImagePositionPatient", path);
   const auto o = required(filter, file, kOrientation, 6, "ImageOrientationPatient", path);
   const auto ps = required(filter, file, kPixelSpacing, 2, "PixelSpacing", path);
-  s.rows = static_cast<int>(required(filter, file, kRows, 1, "Rows", path)[0]);
-  s.columns = static_cast<int>(required(filter, file, kColumns, 1, "Columns", path)[0]);
+  s.rows = unsignedShort(required(filter, file, kRows, 1, "Rows", path)[0], "Rows", path);
+  s.columns =
+      unsignedShort(required(filter, file, kColumns, 1, "Columns", path)[0], "Columns", path);
+  s.bits_allocated = unsignedShort(
+      required(filter, file, kBitsAllocated, 1, "BitsAllocated", path)[0], "BitsAllocated", path);
   s.position = {p[0], p[1], p[2]};
   s.row = {o[0], o[1], o[2]};
   s.column = {o[3], o[4], o[5]};
@@ -173,6 +140,9 @@ double checkSeries(const std::string& folder, const std::vector<SliceHeader>& s,
     if (b.rows != a.rows || b.columns != a.columns)
       throw Error(fmt::format("{}: '{}' is {} × {} pixels but '{}' is {} × {}", folder, name,
                               b.columns, b.rows, first, a.columns, a.rows));
+    if (b.bits_allocated != a.bits_allocated)
+      throw Error(fmt::format("{}: '{}' has {}-bit pixels but '{}' {}-bit", folder, name,
+                              b.bits_allocated, first, a.bits_allocated));
     if (!near(b.row, a.row, 1e-4) || !near(b.column, a.column, 1e-4))
       throw Error(fmt::format("{}: '{}' has another ImageOrientationPatient than '{}'", folder,
                               name, first));
@@ -269,9 +239,21 @@ class DicomStack final : public SliceStack {
   bool rescale_;
 };
 
+// svr says what is wrong with a file itself; GDCM's warnings and errors on stderr (in its
+// tolerant parse: "Desperate attempt", duplicate elements, unknown UIDs) would only be noise.
+void silenceGdcm() {
+  static std::once_flag once;
+  std::call_once(once, [] {
+    gdcm::Trace::DebugOff();
+    gdcm::Trace::WarningOff();
+    gdcm::Trace::ErrorOff();
+  });
+}
+
 }  // namespace
 
-VolumeSource readDicomSource(const std::string& folder) {
+VolumeSource readDicomSource(const std::string& folder, std::uint64_t budget) {
+  silenceGdcm();
   std::vector<SliceHeader> slices;
   for (const fs::directory_entry& entry : fs::directory_iterator(folder)) {
     const std::string name = entry.path().filename().string();
@@ -297,9 +279,14 @@ VolumeSource readDicomSource(const std::string& folder) {
   h.path = h.data_file = folder;
   h.format = "dicom";
   h.dims = {first.columns, first.rows, static_cast<int>(slices.size())};
-  if (h.dims[0] < 1 || h.dims[1] < 1)
-    throw Error(fmt::format("{}: Rows × Columns is {} × {}", first.file, first.rows, first.columns));
   h.spacing = {slices[0].pixel_spacing[1], slices[0].pixel_spacing[0], step};
+  // GDCM decodes a whole slice at a time, sized by the header's Rows, Columns and BitsAllocated.
+  const std::uint64_t slice_bytes = static_cast<std::uint64_t>(first.rows) *
+                                    static_cast<std::uint64_t>(first.columns) *
+                                    static_cast<std::uint64_t>((first.bits_allocated + 7) / 8);
+  checkMemoryBudget(slice_bytes, budget,
+                    fmt::format("{}: a slice of {} × {} pixels of {} bits", first.file,
+                                first.columns, first.rows, first.bits_allocated));
   // The first file's pixel format stands for the series (each file is checked as it is read).
   gdcm::ImageReader reader;
   reader.SetFileName(slices[0].file.c_str());

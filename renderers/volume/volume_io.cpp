@@ -67,7 +67,7 @@ VolumeSource openSource(const std::string& path, const VolumeLoadOptions& option
                             "stacks, and in a raw layout)",
                             path));
   if (tiff) return detail::readTiffSource(path, options.spacing.value_or(glm::dvec3(1.0)));
-  if (fs::is_directory(status)) return detail::readDicomSource(path);
+  if (fs::is_directory(status)) return detail::readDicomSource(path, options.memory_budget);
   if (extension == ".nrrd" || extension == ".nhdr") return detail::readNrrdSource(path, options.memory_budget);
   if (extension == ".mhd" || extension == ".mha") return detail::readMetaImageSource(path, options.memory_budget);
   if (extension == ".nii" || endsWith(name, ".nii.gz")) return detail::readNiftiSource(path);

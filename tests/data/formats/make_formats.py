@@ -4,19 +4,22 @@ a tool independent of svr: NIfTI with nibabel, DICOM with pydicom, TIFF pages wi
 by libtiff's tiffcp, and the same voxels as NRRD written here by hand (the test compares the two).
 
 The grid is 5 × 4 × 3 int16, voxel (i, j, k) = i + 10 j + 100 k − 50, so a voxel's value says
-where it was. Run from this folder: /usr/bin/python3 make_formats.py (needs python3-nibabel,
+where it was. Run from anywhere: /usr/bin/python3 make_formats.py [STEP…] (needs python3-nibabel,
 python3-pydicom, python3-pil and libtiff-tools). The files are committed; this says how they came
 to be, and makes them again.
 """
 import os
 import shutil
 import subprocess
+import sys
 
 import nibabel
 import numpy as np
 import pydicom
-from pydicom.dataset import FileDataset, FileMetaDataset
-from pydicom.uid import ExplicitVRLittleEndian, generate_uid
+from pydicom.dataset import Dataset, FileDataset, FileMetaDataset
+from pydicom.sequence import Sequence
+from pydicom.uid import (ExplicitVRBigEndian, ExplicitVRLittleEndian, ImplicitVRLittleEndian,
+                         RLELossless, generate_uid)
 from PIL import Image
 
 NX, NY, NZ = 5, 4, 3
@@ -59,11 +62,12 @@ def nifti():
     nrrd("scaled.nrrd", 2.0 * GRID.astype(np.float32) - 10.0, spacing, kind="float")
 
 
-def dicom_slice(folder, name, z, series, pixels, position=None, intercept=-1024.0):
+def dicom_slice(folder, name, z, series, pixels, position=None, intercept=-1024.0,
+                syntax=ExplicitVRLittleEndian, sequence=None):
     meta = FileMetaDataset()
     meta.MediaStorageSOPClassUID = "1.2.840.10008.5.1.4.1.1.2"  # CT Image Storage
     meta.MediaStorageSOPInstanceUID = generate_uid()
-    meta.TransferSyntaxUID = ExplicitVRLittleEndian
+    meta.TransferSyntaxUID = ExplicitVRLittleEndian if syntax == RLELossless else syntax
     ds = FileDataset(name, {}, file_meta=meta, preamble=b"\0" * 128)
     ds.SOPClassUID = meta.MediaStorageSOPClassUID
     ds.SOPInstanceUID = meta.MediaStorageSOPInstanceUID
@@ -82,9 +86,46 @@ def dicom_slice(folder, name, z, series, pixels, position=None, intercept=-1024.
     ds.PixelRepresentation = 1
     ds.RescaleSlope = 1
     ds.RescaleIntercept = intercept
-    ds.PixelData = pixels.astype("<i2").tobytes()
-    ds.is_little_endian, ds.is_implicit_VR = True, False
+    if sequence is not None:
+        ds.ReferencedImageSequence = sequence
+    ds.is_little_endian = syntax != ExplicitVRBigEndian
+    ds.is_implicit_VR = syntax == ImplicitVRLittleEndian
+    if syntax == RLELossless:
+        ds.compress(RLELossless, pixels.astype("<i2"))  # encapsulated: items, then a delimiter
+    else:
+        ds.PixelData = pixels.astype(">i2" if syntax == ExplicitVRBigEndian else "<i2").tobytes()
     ds.save_as(os.path.join(folder, name), write_like_original=False)
+
+
+def referenced_images():
+    """A sequence of undefined length whose second item holds a nested sequence: items of
+    defined and undefined length, delimiters."""
+    items = []
+    for n in range(2):
+        item = Dataset()
+        item.ReferencedSOPClassUID = "1.2.840.10008.5.1.4.1.1.2"
+        item.ReferencedSOPInstanceUID = f"1.2.826.0.1.3680043.8.498.3.{n}"
+        items.append(item)
+    inner = Dataset()
+    inner.CodeValue, inner.CodingSchemeDesignator, inner.CodeMeaning = "121311", "DCM", "Localizer"
+    items[1].PurposeOfReferenceCodeSequence = Sequence([inner])
+    outer = Sequence(items)
+    outer.is_undefined_length = True
+    return outer
+
+
+def dicom_framings():
+    """The series again in the other framings a reader meets: implicit VR (with sequences),
+    explicit VR big endian, and RLE-compressed pixels (encapsulated pixel data)."""
+    series = "1.2.826.0.1.3680043.8.498.4"
+    stored = GRID + 1024
+    for name, syntax in [("series_implicit", ImplicitVRLittleEndian),
+                         ("series_big_endian", ExplicitVRBigEndian), ("series_rle", RLELossless)]:
+        shutil.rmtree(name, ignore_errors=True)
+        os.makedirs(name)
+        for z in range(NZ):
+            dicom_slice(name, f"IM{z:04d}.dcm", z, series, stored[:, :, z].T, syntax=syntax,
+                        sequence=referenced_images())
 
 
 def dicom():
@@ -123,6 +164,6 @@ def tiff():
 
 
 os.chdir(os.path.dirname(os.path.abspath(__file__)))
-nifti()
-dicom()
-tiff()
+# Any of the steps may be named (make_formats.py dicom_framings); all by default.
+for step in sys.argv[1:] or ["nifti", "dicom", "dicom_framings", "tiff"]:
+    globals()[step]()

@@ -4,6 +4,9 @@
 // order once read, however it stores it (flipped, permuted, rescaled).
 #include <gtest/gtest.h>
 
+#include <filesystem>
+#include <fstream>
+#include <iterator>
 #include <string>
 #include <vector>
 
@@ -13,6 +16,8 @@
 
 namespace svr {
 namespace {
+
+namespace fs = std::filesystem;
 
 const std::string kDir = std::string(SVR_SOURCE_DIR) + "/tests/data/formats/";
 
@@ -81,6 +86,75 @@ TEST(FormatReaders, DicomSeriesThatAreNotOneGridAreRefused) {
   EXPECT_NE(message("mixed").find("mixes series"), std::string::npos) << message("mixed");
   EXPECT_NE(message("gap").find("2 slices are missing"), std::string::npos) << message("gap");
   EXPECT_NE(message("tilt").find("tilted gantry"), std::string::npos) << message("tilt");
+}
+
+// The same series written by pydicom in the other framings: implicit VR with nested sequences
+// (items of defined and undefined length, delimiters), explicit VR big endian, and RLE pixels
+// (encapsulated: fragments, then a delimiter). GDCM decodes them; svr's walk must pass them.
+TEST(FormatReaders, DicomSeriesInEveryFramingMatchNrrd) {
+  const Volume want = loadVolume(kDir + "series.nrrd");
+  for (const char* folder : {"series_implicit", "series_big_endian", "series_rle"}) {
+    SCOPED_TRACE(folder);
+    expectSameVolume(loadVolume(kDir + folder), want);
+  }
+}
+
+// A good slice with `length` bytes at the offset where `marker` is first found (plus `skip`)
+// replaced by `bytes`, alone in a folder: the error loading it.
+std::string dicomError(const std::string& slice, const std::string& marker, std::size_t skip,
+                       const std::string& bytes, std::size_t length) {
+  std::ifstream in(kDir + slice, std::ios::binary);
+  std::string file((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const std::size_t at = file.find(marker);
+  if (at == std::string::npos) return "marker not found";
+  file.replace(at + skip, length, bytes);
+  const fs::path dir = fs::temp_directory_path() / "svr_dicom_framing";
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  std::ofstream(dir / "IM0000.dcm", std::ios::binary) << file;
+  try {
+    loadVolume(dir.string());
+  } catch (const Error& e) {
+    return e.what();
+  }
+  return "no error";
+}
+
+// Faults in a file's framing are refused before GDCM reads it (GDCM would allocate what a
+// length says, or assert), naming the element and the byte.
+TEST(FormatReaders, DicomFramingFaultsAreRefusedBeforeGdcm) {
+  const auto has = [](const std::string& message, const std::string& part) {
+    return message.find(part) != std::string::npos;
+  };
+  // The bytes of tags and lengths, as ""s literals: they hold NULs.
+  using namespace std::string_literals;
+  const std::string item = "\xfe\xff\x00\xe0"s, pixel_data = "\xe0\x7f\x10\x00"s;
+  // An item of the implicit file's sequence whose length runs past the file.
+  const std::string past = dicomError("series_implicit/IM0000.dcm", item, 4,
+                                      "\x00\x00\x00\x40"s, 4);
+  EXPECT_TRUE(has(past, "element (fffe,e000) has length 1073741824, past its container's end"))
+      << past;
+  // Explicit VR: an unknown VR, PixelSpacing's DS made US (GDCM asserts on that), and native
+  // pixel data given an undefined length.
+  const std::string vr = dicomError("series/IM0001.dcm", pixel_data, 4, "ZZ", 2);
+  EXPECT_TRUE(has(vr, "element (7fe0,0010) has VR 5a 5a, not one of PS3.5's")) << vr;
+  const std::string spacing = dicomError("series/IM0001.dcm", "\x28\x00\x30\x00"s + "DS", 4, "US", 2);
+  EXPECT_TRUE(has(spacing, "element (0028,0030) has VR US where DICOM's data dictionary says DS"))
+      << spacing;
+  const std::string undefined = dicomError("series/IM0001.dcm", pixel_data, 8,
+                                           "\xff\xff\xff\xff"s, 4);
+  EXPECT_TRUE(has(undefined, "where the encapsulated pixel data expects an item")) << undefined;
+  // Big endian read as such: the pixel data's length (big endian 40) made 40 × 2^24.
+  const std::string big = dicomError("series_big_endian/IM0000.dcm", "\x7f\xe0\x00\x10"s + "OW", 8,
+                                     "\x28\x00\x00\x28"s, 4);
+  EXPECT_TRUE(has(big, "element (7fe0,0010) OW has length 671088680, past its container's end"))
+      << big;
+  // A sequence delimiter given a length; the file cut inside its last element.
+  const std::string delimiter = dicomError("series_rle/IM0000.dcm", "\xfe\xff\xdd\xe0"s, 4,
+                                           "\x01\x00\x00\x00"s, 4);
+  EXPECT_TRUE(has(delimiter, "delimiter (fffe,e0dd) has length 1")) << delimiter;
+  const std::string cut = dicomError("series/IM0001.dcm", pixel_data, 20, "", 1000);
+  EXPECT_TRUE(has(cut, "(7fe0,0010) OW has length 40, past its container's end")) << cut;
 }
 
 TEST(FormatReaders, TiffMultiPageAndNumberedFolderMatchNrrd) {
