@@ -127,6 +127,10 @@ nlohmann::json runReport(const RunResult& run, const Scene& scene,
                   {"de_mean", finiteOrNull(l.vs_reference.mean)},
                   {"de_p95", finiteOrNull(l.vs_reference.p95)},
                   {"de_max", finiteOrNull(l.vs_reference.max)},
+                  {"de_model_mean", finiteOrNull(l.model_error.mean)},
+                  {"de_model_p95", finiteOrNull(l.model_error.p95)},
+                  {"de_sampling_mean", finiteOrNull(l.sampling_error.mean)},
+                  {"de_sampling_p95", finiteOrNull(l.sampling_error.p95)},
                   {"de_vs_raycast_mean", finiteOrNull(l.vs_raycast ? l.vs_raycast->mean : 0.0)},
                   {"de_vs_raycast_p95", finiteOrNull(l.vs_raycast ? l.vs_raycast->p95 : 0.0)},
                   {"transmittance_error", finiteOrNull(l.transmittance_error)},
@@ -185,6 +189,7 @@ CompareSummary runComparison(Scene scene, const CompareOptions& o) {
   CompareSummary summary;
   summary.scene = o.scene;
   summary.reference_ms = session.referenceMs();
+  summary.reference_step = session.referenceStep();
   for (const auto& spec : specs) {
     if (const auto why = session.unsupported(spec.renderer)) {
       const std::string note = fmt::format("{} skipped: {}", spec.label(), *why);
@@ -205,7 +210,7 @@ CompareSummary runComparison(Scene scene, const CompareOptions& o) {
   report["scene"] = o.scene;
   report["width"] = scene.width;
   report["height"] = scene.height;
-  report["reference"] = Reference().toJson(scene, session.referenceMs());
+  report["reference"] = Reference().toJson(session.referenceStep(), session.referenceMs());
   nlohmann::json lights = nlohmann::json::array();
   for (const auto& ill : session.illuminations()) lights.push_back(ill.name);
   report["lights"] = lights;
@@ -224,23 +229,33 @@ CompareSummary runComparison(Scene scene, const CompareOptions& o) {
 }
 
 void printSummaryTable(const CompareSummary& s) {
-  fmt::print("{}: reference {} {:.0f} ms\n", s.scene, Reference().label(), s.reference_ms);
+  const ReferenceStep& step = s.reference_step;
+  fmt::print("{}: reference {} at step {} voxel ({} from its half: mean ΔE2000 {:.3f}, probed at "
+             "{}) {:.0f} ms\n",
+             s.scene, Reference().label(), step.step_voxels,
+             step.converged ? "converged" : "NOT converged", step.halving_de2000, step.probe_size,
+             s.reference_ms);
   // ms/frame: a steady frame; first: the classification's first frame, which builds what the
   // backend keeps (encodings, gradients, uploads).
-  fmt::print("{:<40} {:>9} {:>9} {:>11} {:>9} {:>9}  {}\n", "run", "ms/frame", "first ms",
-             "relight fps", "mean ΔE", "vs ray", "pass");
+  // mean ΔE: against the reference; model and sampling: that error's two parts (LightResult).
+  fmt::print("{:<40} {:>9} {:>9} {:>11} {:>9} {:>9} {:>9} {:>9}  {}\n", "run", "ms/frame",
+             "first ms", "relight fps", "mean ΔE", "model", "sampling", "vs ray", "pass");
   for (const auto& run : s.runs) {
-    double de = 0.0, vr = 0.0;
+    double de = 0.0, model = 0.0, sampling = 0.0, vr = 0.0;
+    const double n = static_cast<double>(run.lights.size());
     for (const auto& l : run.lights) {
-      de += l.vs_reference.mean / run.lights.size();
-      if (l.vs_raycast) vr += l.vs_raycast->mean / run.lights.size();
+      de += l.vs_reference.mean / n;
+      model += l.model_error.mean / n;
+      sampling += l.sampling_error.mean / n;
+      if (l.vs_raycast) vr += l.vs_raycast->mean / n;
     }
     bool pass = true;
     for (const auto& m : s.exceedances)
       if (m.run == run.spec.label()) pass = false;
-    fmt::print("{:<40} {:>9.1f} {:>9.1f} {:>11.0f} {:>9.3f} {:>9.3f}  {}\n", run.spec.label(),
-               run.render_ms, run.first_render_ms, 1000.0 / std::max(run.relight_ms, 1e-9), de,
-               vr, pass ? "yes" : "NO");
+    fmt::print("{:<40} {:>9.1f} {:>9.1f} {:>11.0f} {:>9.3f} {:>9.3f} {:>9.3f} {:>9.3f}  {}\n",
+               run.spec.label(), run.render_ms, run.first_render_ms,
+               1000.0 / std::max(run.relight_ms, 1e-9), de, model, sampling, vr,
+               pass ? "yes" : "NO");
   }
 }
 

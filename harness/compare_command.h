@@ -28,6 +28,7 @@ struct CompareSummary {
   std::vector<Exceedance> exceedances;
   std::vector<std::string> skipped;  // "shearwarp skipped: … orthographic cameras only …"
   double reference_ms = 0.0;
+  ReferenceStep reference_step;
   nlohmann::json report;  // what report.json holds
 };
 

@@ -44,17 +44,18 @@ std::string Reference::model() {
   return fmt::format("spectral:{}", WavelengthGrid::standard().count);
 }
 
-double Reference::stepVoxels(const Scene& scene) const {
-  return std::min(scene.step_voxels, max_step_voxels);
+double Reference::startStepVoxels(const Scene& scene) const {
+  return std::min(scene.step_voxels, max_start_voxels);
 }
 
 std::string Reference::label() const { return fmt::format("{} {}", renderer, model()); }
 
-nlohmann::json Reference::toJson(const Scene& scene, double render_ms) const {
+nlohmann::json Reference::toJson(const ReferenceStep& step, double render_ms) const {
   return {{"renderer", renderer},
           {"model", model()},
           {"render_ms", render_ms},
-          {"step_voxels", stepVoxels(scene)},
+          {"step_voxels", step.step_voxels},
+          {"step_convergence", step.toJson()},
           {"early_termination", termination}};
 }
 
@@ -74,8 +75,10 @@ ComparisonSession::ComparisonSession(Scene scene, const std::string& data_dir)
                                   : fmt::format("mix {}", scene_.mixes[i - scene_.lights.size()].name),
                               spectra[i]});
   const Reference reference;
+  reference_step_ = convergedReferenceStep(scene_, spectra_->observer,
+                                           reference.startStepVoxels(scene_));
   Rendered ref = render(reference.renderer, reference.model(), nlohmann::json::object(),
-                        reference.stepVoxels(scene_), reference.termination);
+                        reference_step_.step_voxels, reference.termination);
   reference_model_ = std::move(ref.chosen.model);
   reference_ = std::move(ref.image);
   reference_ms_ = ref.render_ms;
@@ -101,6 +104,17 @@ ComparisonSession::Rendered ComparisonSession::render(const std::string& rendere
   return {session.takeModel(), session.takeImage(), classify_ms, first_ms, steady_ms};
 }
 
+const ComparisonSession::Rendered& ComparisonSession::renderOnce(
+    std::map<std::string, Rendered>& cache, const std::string& key, const std::string& renderer,
+    const std::string& model, const nlohmann::json& options) {
+  auto it = cache.find(key);
+  if (it == cache.end())
+    it = cache
+             .emplace(key, render(renderer, model, options, scene_.step_voxels, scene_.termination))
+             .first;
+  return it->second;
+}
+
 std::optional<std::string> ComparisonSession::unsupported(const std::string& renderer) const {
   // The view is what differs between scenes; channel counts are checked when a run renders.
   return unsupportedBy(backendEntry(renderer).info, scene_.camera, 1, 1);
@@ -109,17 +123,18 @@ std::optional<std::string> ComparisonSession::unsupported(const std::string& ren
 RunResult ComparisonSession::run(const RunSpec& spec) {
   Rendered r = render(spec.renderer, spec.model, spec.options, scene_.step_voxels,
                       scene_.termination, /*steady=*/true);
-  const Rendered* raycast = nullptr;
   const std::string baseline = Reference().renderer;  // the algorithm-only error's baseline
-  if (spec.renderer != baseline) {
-    auto it = raycast_by_model_.find(spec.model);
-    if (it == raycast_by_model_.end())
-      it = raycast_by_model_
-               .emplace(spec.model, render(baseline, spec.model, nlohmann::json::object(),
-                                           scene_.step_voxels, scene_.termination))
-               .first;
-    raycast = &it->second;
-  }
+  const Rendered* raycast =
+      spec.renderer == baseline
+          ? nullptr
+          : &renderOnce(raycast_by_model_, spec.model, baseline, spec.model,
+                        nlohmann::json::object());
+  // The exact twin: this very image when the run is spectral:81.
+  const Rendered* exact =
+      r.chosen.model->name() == Reference::model()
+          ? &r
+          : &renderOnce(exact_by_backend_, spec.renderer + " " + spec.options.dump(),
+                        spec.renderer, Reference::model(), spec.options);
   RunResult result;
   result.spec = spec;
   const ColourModel& model = *r.chosen.model;
@@ -156,6 +171,13 @@ RunResult ComparisonSession::run(const RunSpec& spec) {
                      scene_.background);
     lr.vs_reference = vs_ref.stats;
     lr.error_map = vs_ref.map;
+    const ColourModel& exact_model = *exact->chosen.model;
+    lr.model_error = compareRelit(r.image, model, exact->image, exact_model, ill.spectrum, white,
+                                  0.98, scene_.background)
+                         .stats;
+    lr.sampling_error = compareRelit(exact->image, exact_model, reference_, *reference_model_,
+                                     ill.spectrum, white, 0.98, scene_.background)
+                            .stats;
     if (raycast)
       lr.vs_raycast =
           compareRelit(r.image, model, raycast->image, *raycast->chosen.model, ill.spectrum, white,

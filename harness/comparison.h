@@ -2,8 +2,9 @@
 // The comparison at the heart of the harness (design.md §6): one scene rendered by the reference
 // (raycast, spectral:81, step ≤ 0.25 voxel, no early termination) and by any backend × colour
 // model; every run relit under every scene light and mix and measured against the reference
-// (colour-model plus algorithm error) and against the raycaster with the same model (algorithm
-// error alone), with timings. compare, sweep and demo are built on it.
+// (colour-model plus algorithm error, and the two apart: LightResult) and against the raycaster
+// with the same model (algorithm error alone), with timings. compare, sweep and demo are built
+// on it.
 
 #include <map>
 #include <memory>
@@ -12,6 +13,7 @@
 #include <string>
 #include <vector>
 
+#include "harness/reference_step.h"
 #include "harness/render_session.h"
 #include "renderers/scene/scene.h"
 #include "renderers/registry.h"
@@ -26,14 +28,16 @@ namespace svr {
 // The reference every run is measured against (design.md §6): the reference backend (the
 // raycaster, as the registry names it) with the full spectral model, a fine step and every
 // sample composited.
+// Its step is converged (reference_step.h): it starts at the scene's step, or
+// max_start_voxels if finer, and is halved until halving it again changes little.
 struct Reference {
   std::string renderer = referenceRendererName();
-  double max_step_voxels = 0.25;  // the scene's step, or this if finer
-  double termination = 0.0;       // no early termination
-  static std::string model();     // "spectral:81": every sample of the standard grid
-  double stepVoxels(const Scene& scene) const;
-  std::string label() const;      // "raycast spectral:81"
-  nlohmann::json toJson(const Scene& scene, double render_ms) const;
+  double max_start_voxels = 0.25;
+  double termination = 0.0;    // no early termination
+  static std::string model();  // "spectral:81": every sample of the standard grid
+  double startStepVoxels(const Scene& scene) const;
+  std::string label() const;   // "raycast spectral:81"
+  nlohmann::json toJson(const ReferenceStep& step, double render_ms) const;
 };
 
 struct RunSpec {
@@ -43,9 +47,16 @@ struct RunSpec {
   std::string label() const;                           // "splat factor:6 {mode: direct}"
 };
 
+// The total error (vs_reference) splits in two (issue 51), each measured against the same
+// backend and options rendered with spectral:81 at the run's own step and termination (the
+// run's "exact twin"):
+//   model_error     the run against its exact twin: what the colour model alone costs;
+//   sampling_error  the exact twin against the reference: what the step, early termination and
+//                   the backend's resampling cost, whatever the model.
 struct LightResult {
   std::string light;
   ErrorStats vs_reference;
+  ErrorStats model_error, sampling_error;
   std::optional<ErrorStats> vs_raycast;  // empty for the raycaster itself
   double transmittance_error = 0.0;      // mean |ΔT| (luminance-weighted) over covered pixels
   std::vector<float> error_map;          // ΔE2000 against the reference, per pixel
@@ -77,6 +88,7 @@ class ComparisonSession {
   const Scene& scene() const { return scene_; }
   const std::vector<SceneIllumination>& illuminations() const { return illuminations_; }
   double referenceMs() const { return reference_ms_; }
+  const ReferenceStep& referenceStep() const { return reference_step_; }
   const LightIndependentImage& reference() const { return reference_; }
   const ColourModel& referenceModel() const { return *reference_model_; }
 
@@ -97,13 +109,21 @@ class ComparisonSession {
                   const nlohmann::json& options, double step_voxels, double termination,
                   bool steady = false);
 
+  // Rendered at the scene's own sampling once per key (the raycaster per model for the
+  // algorithm-only error; a run's exact twin per backend and options).
+  const Rendered& renderOnce(std::map<std::string, Rendered>& cache, const std::string& key,
+                             const std::string& renderer, const std::string& model,
+                             const nlohmann::json& options);
+
   Scene scene_;
   std::shared_ptr<const SessionSpectra> spectra_;
   std::vector<SceneIllumination> illuminations_;
   std::unique_ptr<ColourModel> reference_model_;
+  ReferenceStep reference_step_;
   LightIndependentImage reference_;
   double reference_ms_ = 0.0;
   std::map<std::string, Rendered> raycast_by_model_;  // for the algorithm-only error
+  std::map<std::string, Rendered> exact_by_backend_;  // runs' exact twins, by backend and options
 };
 
 // Tolerances: one table of per-backend defaults, overridden by the scene's "tolerances"

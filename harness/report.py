@@ -204,7 +204,10 @@ def section(folder, report):
     parts.append(chart_with_titles(folder, "chart-" + slug(report["scene"])))
     parts.append("<table><tr><th>run</th><th>model</th><th>ms/frame</th><th>first frame ms</th>"
                  "<th>relight fps</th>"
-                 "<th>light</th><th>mean ΔE</th><th>p95</th><th>max</th><th>vs raycast</th>"
+                 "<th>light</th><th>mean ΔE</th><th>p95</th><th>max</th>"
+                 "<th title='the run against the same backend with spectral:81 at its own sampling'>"
+                 "model</th><th title='that spectral:81 image against the reference'>sampling</th>"
+                 "<th>vs raycast</th>"
                  "<th>ΔT</th><th>pass</th></tr>")
     for run in report["runs"]:
         for l in run["lights"]:
@@ -214,7 +217,8 @@ def section(folder, report):
                 f"<td>{run['render_ms']:.1f}</td><td>{run.get('first_render_ms', run['render_ms']):.1f}</td>"
                 f"<td>{run['relight_fps']:.0f}</td>"
                 f"<td>{e(l['light'])}</td><td>{fmt(l['de_mean'])}</td><td>{fmt(l['de_p95'])}</td>"
-                f"<td>{fmt(l['de_max'])}</td><td>{fmt(l['de_vs_raycast_mean'])}</td>"
+                f"<td>{fmt(l['de_max'])}</td><td>{fmt(l.get('de_model_mean'))}</td>"
+                f"<td>{fmt(l.get('de_sampling_mean'))}</td><td>{fmt(l['de_vs_raycast_mean'])}</td>"
                 f"<td>{fmt(l['transmittance_error'])}</td>"
                 f"<td class={'ok' if l['pass'] else 'miss'}>{'yes' if l['pass'] else 'NO'}</td></tr>")
     parts.append("</table>")

@@ -72,10 +72,11 @@ TEST(Comparison, RaycastAgainstItselfAndATightToleranceFails) {
   Scene scene = test::phantomScene();
   scene.width = scene.height = 32;
   ComparisonSession session(scene, test::rendererDataDir());
-  // spectral:81 at the reference's own step and no early termination is the reference itself.
-  scene.step_voxels = 0.25;
+  // At the finest reference step and no early termination, spectral:81 is the reference itself.
+  scene.step_voxels = ReferenceStep().finest_voxels;
   scene.termination = 0.0;
   ComparisonSession fine(scene, test::rendererDataDir());
+  ASSERT_EQ(fine.referenceStep().step_voxels, scene.step_voxels);
   const RunResult exact = fine.run({"raycast", "spectral:81", nlohmann::json::object()});
   for (const auto& l : exact.lights) EXPECT_EQ(l.vs_reference.max, 0.0) << l.light;
   const RunResult rgb = session.run({"raycast", "rgb", nlohmann::json::object()});
@@ -87,6 +88,52 @@ TEST(Comparison, RaycastAgainstItselfAndATightToleranceFails) {
       << misses[0].str();
   EXPECT_NE(misses[0].str().find("exceeds the tolerance 0.0001"), std::string::npos);
   EXPECT_TRUE(checkTolerances(rgb, {}).empty());
+}
+
+// The total error splits into the model's (against spectral:81 at the run's own sampling) and
+// the sampling's (that image against the reference): where the run samples as the reference
+// does, the whole error is the model's; spectral:81's whole error is the sampling's.
+TEST(Comparison, ModelAndSamplingErrorsApart) {
+  Scene scene = test::phantomScene();
+  scene.width = scene.height = 32;
+  ComparisonSession session(scene, test::rendererDataDir());
+  const RunResult exact = session.run({"raycast", "spectral:81", nlohmann::json::object()});
+  const RunResult rgb = session.run({"raycast", "rgb", nlohmann::json::object()});
+  scene.step_voxels = ReferenceStep().finest_voxels;
+  scene.termination = 0.0;
+  ComparisonSession fine(scene, test::rendererDataDir());
+  const RunResult rgb_fine = fine.run({"raycast", "rgb", nlohmann::json::object()});
+  for (std::size_t i = 0; i < rgb.lights.size(); ++i) {
+    SCOPED_TRACE(rgb.lights[i].light);
+    EXPECT_EQ(exact.lights[i].model_error.max, 0.0);
+    EXPECT_EQ(exact.lights[i].sampling_error.mean, exact.lights[i].vs_reference.mean);
+    EXPECT_GT(exact.lights[i].sampling_error.mean, 0.0);  // step 0.5 with early termination
+    // rgb's exact twin is that same spectral:81 image.
+    EXPECT_EQ(rgb.lights[i].sampling_error.mean, exact.lights[i].sampling_error.mean);
+    EXPECT_GT(rgb.lights[i].model_error.mean, 0.0);
+    EXPECT_EQ(rgb_fine.lights[i].sampling_error.max, 0.0);
+    EXPECT_EQ(rgb_fine.lights[i].model_error.mean, rgb_fine.lights[i].vs_reference.mean);
+  }
+}
+
+// The reference's step: halved from the start until halving it again changes the probe image
+// by at most the target; a target nothing meets ends at the finest step, not converged.
+TEST(Comparison, ReferenceStepHalvesUntilConverged) {
+  Scene scene = test::phantomScene();
+  scene.width = scene.height = 32;
+  const Observer& observer = test::rendererObserver();
+  const ReferenceStep loose = convergedReferenceStep(scene, observer, 0.25, 1e9);
+  EXPECT_EQ(loose.step_voxels, 0.25);
+  EXPECT_TRUE(loose.converged);
+  EXPECT_GT(loose.halving_de2000, 0.0);
+  const ReferenceStep never = convergedReferenceStep(scene, observer, 0.25, 0.0);
+  EXPECT_EQ(never.step_voxels, never.finest_voxels);
+  EXPECT_FALSE(never.converged);
+  // Halving the step shrinks the change: each halving's figure is below the one before.
+  EXPECT_LT(never.halving_de2000, loose.halving_de2000);
+  const ReferenceStep chosen = convergedReferenceStep(scene, observer, 0.25);
+  EXPECT_LE(chosen.halving_de2000, kReferenceStepTarget);
+  EXPECT_TRUE(chosen.converged);
 }
 
 TEST(Sweep, ThreeChannelsBreakDownUnderDeepAbsorptionWhereSixHold) {
