@@ -6,7 +6,8 @@
 // modality's (RescaleSlope × stored + RescaleIntercept, per file: float32 when any file
 // rescales). The grid is turned from DICOM's patient frame (LPS) to RAS (axis_map.h).
 #include <fmt/format.h>
-#include <gdcmImageReader.h>
+#include <gdcmImage.h>
+#include <gdcmPhotometricInterpretation.h>
 #include <gdcmReader.h>
 #include <gdcmStringFilter.h>
 #include <gdcmTrace.h>
@@ -36,14 +37,19 @@ const gdcm::Tag kPixelData(0x7fe0, 0x0010), kSeriesUid(0x0020, 0x000e),
     kPosition(0x0020, 0x0032), kOrientation(0x0020, 0x0037), kRows(0x0028, 0x0010),
     kColumns(0x0028, 0x0011), kPixelSpacing(0x0028, 0x0030), kSlope(0x0028, 0x1053),
     kIntercept(0x0028, 0x1052), kFrames(0x0028, 0x0008), kSamples(0x0028, 0x0002),
-    kThickness(0x0018, 0x0050), kBitsAllocated(0x0028, 0x0100);
+    kThickness(0x0018, 0x0050), kBitsAllocated(0x0028, 0x0100), kBitsStored(0x0028, 0x0101),
+    kHighBit(0x0028, 0x0102), kPixelRepresentation(0x0028, 0x0103),
+    kPhotometric(0x0028, 0x0004);
 
 // One file's header, up to its pixels.
 struct SliceHeader {
   std::string file, series;
   glm::dvec3 position{0.0}, row{0.0}, column{0.0};
   double pixel_spacing[2]{1.0, 1.0};  // between rows (y), between columns (x)
-  int rows = 0, columns = 0, bits_allocated = 0;
+  int rows = 0, columns = 0;
+  ScalarType stored = ScalarType::kUint8;
+  gdcm::PixelFormat format;  // as the header states it: what GDCM decodes to
+  std::string photometric, syntax;
   double slope = 1.0, intercept = 0.0, thickness = 0.0;
   double along = 0.0;  // position · normal
 };
@@ -63,18 +69,56 @@ std::vector<double> required(const gdcm::StringFilter& filter, const gdcm::File&
                              const gdcm::Tag& tag, std::size_t count, const char* name,
                              const std::string& path) {
   std::vector<double> v = numbers(filter, file, tag);
-  if (v.size() != count || !std::all_of(v.begin(), v.end(), [](double x) { return std::isfinite(x); }))
+  if (v.size() != count ||
+      !std::all_of(v.begin(), v.end(), [](double x) { return std::isfinite(x); }))
     throw Error(fmt::format("{}: {} ({:04x},{:04x}) holds {} finite numbers; expected {}", path,
                             name, tag.GetGroup(), tag.GetElement(), v.size(), count));
   return v;
 }
 
-// Rows, Columns and BitsAllocated are US: 1 … 65535 (a fuzzed VR may say otherwise).
-int unsignedShort(double value, const char* name, const std::string& path) {
-  if (!(value >= 1 && value <= 65535 && value == std::floor(value)))
-    throw Error(fmt::format("{}: {} is {}; expected a whole number in 1 … 65535", path, name,
-                            value));
+// One whole number in [lo, hi] (Rows, Columns and the pixel format's are US; a fuzzed VR may
+// hold anything).
+int wholeNumber(const gdcm::StringFilter& filter, const gdcm::File& file, const gdcm::Tag& tag,
+                const char* name, int lo, int hi, const std::string& path) {
+  const double value = required(filter, file, tag, 1, name, path)[0];
+  if (!(value >= lo && value <= hi && value == std::floor(value)))
+    throw Error(fmt::format("{}: {} is {}; expected a whole number in {} … {}", path, name, value,
+                            lo, hi));
   return static_cast<int>(value);
+}
+
+// The pixel format from the header's own attributes, checked here: GDCM's ImageReader derives it
+// through ImageHelper, which asserts on inconsistent attributes (a RescaleSlope of 0, a VR or
+// VM it did not expect: fuzz findings), so svr decodes without it (DicomStack::slice).
+void readPixelFormat(const gdcm::StringFilter& filter, const gdcm::File& file, SliceHeader& s) {
+  const auto value = [&](const gdcm::Tag& tag, const char* name) {
+    return wholeNumber(filter, file, tag, name, 0, 65535, s.file);
+  };
+  const int allocated = value(kBitsAllocated, "BitsAllocated");
+  const int stored = value(kBitsStored, "BitsStored"), high = value(kHighBit, "HighBit");
+  const int is_signed = value(kPixelRepresentation, "PixelRepresentation");
+  if (!(allocated == 8 || allocated == 16 || allocated == 32) || stored < 1 ||
+      stored > allocated || high != stored - 1 || (is_signed != 0 && is_signed != 1))
+    throw Error(fmt::format("{}: BitsAllocated {}, BitsStored {}, HighBit {}, "
+                            "PixelRepresentation {}; svr reads 8-, 16- or 32-bit integers with "
+                            "HighBit = BitsStored − 1",
+                            s.file, allocated, stored, high, is_signed));
+  static const ScalarType kTypes[2][3] = {
+      {ScalarType::kUint8, ScalarType::kUint16, ScalarType::kUint32},
+      {ScalarType::kInt8, ScalarType::kInt16, ScalarType::kInt32}};
+  s.stored = kTypes[is_signed][allocated == 8 ? 0 : allocated == 16 ? 1 : 2];
+  s.format = gdcm::PixelFormat(1, static_cast<unsigned short>(allocated),
+                               static_cast<unsigned short>(stored),
+                               static_cast<unsigned short>(high),
+                               static_cast<unsigned short>(is_signed));
+  if (file.GetDataSet().FindDataElement(kPhotometric))
+    s.photometric = filter.ToString(kPhotometric);
+  while (!s.photometric.empty() && (s.photometric.back() == ' ' || s.photometric.back() == '\0'))
+    s.photometric.pop_back();
+  if (s.photometric != "MONOCHROME1" && s.photometric != "MONOCHROME2")
+    throw Error(fmt::format("{}: PhotometricInterpretation is '{}'; svr reads grey-value series "
+                            "(MONOCHROME1 or MONOCHROME2)",
+                            s.file, s.photometric));
 }
 
 SliceHeader readSliceHeader(const std::string& path) {
@@ -100,11 +144,10 @@ SliceHeader readSliceHeader(const std::string& path) {
   const auto p = required(filter, file, kPosition, 3, "ImagePositionPatient", path);
   const auto o = required(filter, file, kOrientation, 6, "ImageOrientationPatient", path);
   const auto ps = required(filter, file, kPixelSpacing, 2, "PixelSpacing", path);
-  s.rows = unsignedShort(required(filter, file, kRows, 1, "Rows", path)[0], "Rows", path);
-  s.columns =
-      unsignedShort(required(filter, file, kColumns, 1, "Columns", path)[0], "Columns", path);
-  s.bits_allocated = unsignedShort(
-      required(filter, file, kBitsAllocated, 1, "BitsAllocated", path)[0], "BitsAllocated", path);
+  s.rows = wholeNumber(filter, file, kRows, "Rows", 1, 65535, path);
+  s.columns = wholeNumber(filter, file, kColumns, "Columns", 1, 65535, path);
+  readPixelFormat(filter, file, s);
+  s.syntax = file.GetHeader().GetDataSetTransferSyntax().GetString();
   s.position = {p[0], p[1], p[2]};
   s.row = {o[0], o[1], o[2]};
   s.column = {o[3], o[4], o[5]};
@@ -115,9 +158,10 @@ SliceHeader readSliceHeader(const std::string& path) {
   if (const auto v = numbers(filter, file, kSlope); !v.empty()) s.slope = v[0];
   if (const auto v = numbers(filter, file, kIntercept); !v.empty()) s.intercept = v[0];
   if (const auto v = numbers(filter, file, kThickness); !v.empty()) s.thickness = v[0];
-  if (!std::isfinite(s.slope) || !std::isfinite(s.intercept))
-    throw Error(fmt::format("{}: RescaleSlope {} and RescaleIntercept {} must be finite", path,
-                            s.slope, s.intercept));
+  if (!std::isfinite(s.slope) || !std::isfinite(s.intercept) || s.slope == 0.0)
+    throw Error(fmt::format("{}: RescaleSlope {} and RescaleIntercept {} must be finite, the "
+                            "slope not 0",
+                            path, s.slope, s.intercept));
   return s;
 }
 
@@ -140,9 +184,9 @@ double checkSeries(const std::string& folder, const std::vector<SliceHeader>& s,
     if (b.rows != a.rows || b.columns != a.columns)
       throw Error(fmt::format("{}: '{}' is {} × {} pixels but '{}' is {} × {}", folder, name,
                               b.columns, b.rows, first, a.columns, a.rows));
-    if (b.bits_allocated != a.bits_allocated)
-      throw Error(fmt::format("{}: '{}' has {}-bit pixels but '{}' {}-bit", folder, name,
-                              b.bits_allocated, first, a.bits_allocated));
+    if (b.stored != a.stored)
+      throw Error(fmt::format("{}: '{}' has {} pixels but '{}' {}", folder, name,
+                              toString(b.stored), first, toString(a.stored)));
     if (!near(b.row, a.row, 1e-4) || !near(b.column, a.column, 1e-4))
       throw Error(fmt::format("{}: '{}' has another ImageOrientationPatient than '{}'", folder,
                               name, first));
@@ -183,48 +227,53 @@ double checkSeries(const std::string& folder, const std::vector<SliceHeader>& s,
   return step;
 }
 
-ScalarType storedType(const gdcm::PixelFormat& format, const std::string& path) {
-  switch (format.GetScalarType()) {
-    case gdcm::PixelFormat::UINT8: return ScalarType::kUint8;
-    case gdcm::PixelFormat::INT8: return ScalarType::kInt8;
-    case gdcm::PixelFormat::UINT16: return ScalarType::kUint16;
-    case gdcm::PixelFormat::INT16: return ScalarType::kInt16;
-    case gdcm::PixelFormat::UINT32: return ScalarType::kUint32;
-    case gdcm::PixelFormat::INT32: return ScalarType::kInt32;
-    case gdcm::PixelFormat::FLOAT32: return ScalarType::kFloat32;
-    case gdcm::PixelFormat::FLOAT64: return ScalarType::kFloat64;
-    default:
-      throw Error(fmt::format("{}: pixels are {}; svr reads 8/16/32-bit integers and floats",
-                              path, format.GetScalarTypeAsString()));
-  }
+// A slice's pixels: GDCM parses the file and decodes its PixelData in the file's transfer
+// syntax (any GDCM has a codec for) into the pixel format the header states.
+std::vector<std::byte> decodePixels(const SliceHeader& s) {
+  gdcm::Reader reader;
+  reader.SetFileName(s.file.c_str());
+  if (!reader.Read()) throw Error(fmt::format("{}: GDCM cannot read it", s.file));
+  const gdcm::DataSet& data = reader.GetFile().GetDataSet();
+  if (!data.FindDataElement(kPixelData))
+    throw Error(fmt::format("{}: has no PixelData (7fe0,0010)", s.file));
+  const gdcm::DataElement& element = data.GetDataElement(kPixelData);
+  std::vector<std::byte> pixels(static_cast<std::size_t>(s.rows) * s.columns *
+                                bytesPerVoxel(s.stored));
+  const gdcm::ByteValue* native = element.GetByteValue();
+  if (native && native->GetLength() < pixels.size())
+    throw Error(fmt::format("{}: PixelData holds {} bytes; {} × {} {} needs {}", s.file,
+                            native->GetLength(), s.columns, s.rows, toString(s.stored),
+                            pixels.size()));
+  gdcm::Image image;
+  image.SetNumberOfDimensions(2);
+  image.SetDimension(0, static_cast<unsigned>(s.columns));
+  image.SetDimension(1, static_cast<unsigned>(s.rows));
+  image.SetPixelFormat(s.format);
+  image.SetPhotometricInterpretation(
+      gdcm::PhotometricInterpretation::GetPIType(s.photometric.c_str()));
+  image.SetTransferSyntax(reader.GetFile().GetHeader().GetDataSetTransferSyntax());
+  image.SetDataElement(element);
+  if (image.GetBufferLength() != pixels.size() ||
+      !image.GetBuffer(reinterpret_cast<char*>(pixels.data())))
+    throw Error(fmt::format("{}: GDCM cannot decode {} × {} {} pixels from its PixelData ({})",
+                            s.file, s.columns, s.rows, toString(s.stored), s.syntax));
+  return pixels;
 }
 
 // The sorted files' pixels, decoded by GDCM (any transfer syntax it supports), rescaled when
 // any file rescales.
 class DicomStack final : public SliceStack {
  public:
-  DicomStack(std::vector<SliceHeader> slices, ScalarType stored, bool rescale)
-      : slices_(std::move(slices)), stored_(stored), rescale_(rescale) {}
+  DicomStack(std::vector<SliceHeader> slices, bool rescale)
+      : slices_(std::move(slices)), stored_(slices_.front().stored), rescale_(rescale) {}
   ScalarType type() const override { return rescale_ ? ScalarType::kFloat32 : stored_; }
   std::vector<std::byte> slice(int z) const override {
     const SliceHeader& s = slices_[static_cast<std::size_t>(z)];
-    gdcm::ImageReader reader;
-    reader.SetFileName(s.file.c_str());
-    if (!reader.Read()) throw Error(fmt::format("{}: GDCM cannot decode its pixels", s.file));
-    const gdcm::Image& image = reader.GetImage();
-    const ScalarType type = storedType(image.GetPixelFormat(), s.file);
-    if (type != stored_)
-      throw Error(fmt::format("{}: pixels are {}; the series' first file's are {}", s.file,
-                              toString(type), toString(stored_)));
     const std::size_t n = static_cast<std::size_t>(s.rows) * s.columns;
-    std::vector<std::byte> pixels(n * bytesPerVoxel(type));
-    if (image.GetBufferLength() != pixels.size() ||
-        !image.GetBuffer(reinterpret_cast<char*>(pixels.data())))
-      throw Error(fmt::format("{}: decoded {} bytes of pixels; {} × {} {} needs {}", s.file,
-                              image.GetBufferLength(), s.columns, s.rows, toString(type),
-                              pixels.size()));
+    std::vector<std::byte> pixels = decodePixels(s);
     if (!rescale_) return pixels;
-    const Volume stored({s.columns, s.rows, 1}, glm::dvec3(1.0), type, std::move(pixels), s.file);
+    const Volume stored({s.columns, s.rows, 1}, glm::dvec3(1.0), s.stored, std::move(pixels),
+                        s.file);
     std::vector<std::byte> out(n * sizeof(float));
     for (std::size_t i = 0; i < n; ++i) {
       const float v = static_cast<float>(s.slope * stored.value(i) + s.intercept);
@@ -280,19 +329,14 @@ VolumeSource readDicomSource(const std::string& folder, std::uint64_t budget) {
   h.format = "dicom";
   h.dims = {first.columns, first.rows, static_cast<int>(slices.size())};
   h.spacing = {slices[0].pixel_spacing[1], slices[0].pixel_spacing[0], step};
-  // GDCM decodes a whole slice at a time, sized by the header's Rows, Columns and BitsAllocated.
-  const std::uint64_t slice_bytes = static_cast<std::uint64_t>(first.rows) *
-                                    static_cast<std::uint64_t>(first.columns) *
-                                    static_cast<std::uint64_t>((first.bits_allocated + 7) / 8);
-  checkMemoryBudget(slice_bytes, budget,
-                    fmt::format("{}: a slice of {} × {} pixels of {} bits", first.file,
-                                first.columns, first.rows, first.bits_allocated));
-  // The first file's pixel format stands for the series (each file is checked as it is read).
-  gdcm::ImageReader reader;
-  reader.SetFileName(slices[0].file.c_str());
-  if (!reader.Read()) throw Error(fmt::format("{}: GDCM cannot decode its pixels", slices[0].file));
-  const ScalarType stored = storedType(reader.GetImage().GetPixelFormat(), slices[0].file);
-  h.encoding = reader.GetFile().GetHeader().GetDataSetTransferSyntax().GetString();
+  // GDCM decodes a whole slice at a time.
+  checkMemoryBudget(static_cast<std::uint64_t>(first.rows) *
+                        static_cast<std::uint64_t>(first.columns) * bytesPerVoxel(first.stored),
+                    budget,
+                    fmt::format("{}: a slice of {} × {} {}", first.file, first.columns,
+                                first.rows, toString(first.stored)));
+  const ScalarType stored = first.stored;
+  h.encoding = first.syntax;
   const bool rescale = std::any_of(slices.begin(), slices.end(), [](const SliceHeader& s) {
     return s.slope != 1.0 || s.intercept != 0.0;
   });
@@ -312,7 +356,7 @@ VolumeSource readDicomSource(const std::string& folder, std::uint64_t budget) {
   if (oriented.oblique_degrees > 0.01)
     h.orientation += fmt::format(" (oblique by {:.2f}°: nearest axes kept, not resampled)",
                                  oriented.oblique_degrees);
-  auto stack = std::make_shared<DicomStack>(std::move(slices), stored, rescale);
+  auto stack = std::make_shared<DicomStack>(std::move(slices), rescale);
   h.type = stack->type();
   h.endian = nativeEndian();
   h.data_bytes = volumeBytes({h.dims[0], h.dims[1], h.dims[2]}, h.type, folder);
