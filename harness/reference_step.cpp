@@ -28,11 +28,7 @@ nlohmann::json ReferenceStep::toJson() const {
 ReferenceStep convergedReferenceStep(const Scene& scene, const Observer& observer,
                                      double start_voxels, double target, double finest_voxels) {
   const auto t0 = std::chrono::steady_clock::now();
-  Scene probe = scene;
-  const double scale =
-      std::min(1.0, double(ModelProbe::kLongerSide) / std::max(scene.width, scene.height));
-  probe.width = std::max(1, static_cast<int>(std::lround(scene.width * scale)));
-  probe.height = std::max(1, static_cast<int>(std::lround(scene.height * scale)));
+  Scene probe = ModelProbe::sized(scene);
   probe.termination = 0.0;
   const std::unique_ptr<ColourModel> exact = makeSpectralModel(observer, observer.grid().count);
   const std::unique_ptr<Renderer> renderer = makeRenderer(referenceRendererName());

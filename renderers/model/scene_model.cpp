@@ -193,11 +193,15 @@ SceneModel chooseAutoModel(const Scene& scene, const Observer& observer) {
 
 }  // namespace
 
-ModelProbe::ModelProbe(const Scene& scene, const Observer& observer)
-    : scene_(scene), observer_(observer) {
+Scene ModelProbe::sized(Scene scene) {
   const double scale = std::min(1.0, double(kLongerSide) / std::max(scene.width, scene.height));
-  scene_.width = std::max(1, static_cast<int>(std::lround(scene.width * scale)));
-  scene_.height = std::max(1, static_cast<int>(std::lround(scene.height * scale)));
+  scene.width = std::max(1, static_cast<int>(std::lround(scene.width * scale)));
+  scene.height = std::max(1, static_cast<int>(std::lround(scene.height * scale)));
+  return scene;
+}
+
+ModelProbe::ModelProbe(const Scene& scene, const Observer& observer)
+    : scene_(sized(scene)), observer_(observer) {
   lights_ = sceneIlluminations(scene, observer);
   reference_model_ = makeSpectralModel(observer, observer.grid().count);
   reference_ = render(*reference_model_);

@@ -52,6 +52,8 @@ struct SceneModel {
 class ModelProbe {
  public:
   static constexpr int kLongerSide = 96;
+  // The scene at the probe's size: kLongerSide pixels on its longer side (never enlarged).
+  static Scene sized(Scene scene);
   ModelProbe(const Scene& scene, const Observer& observer);
   // The worst over lights and mixes of the mean ΔE2000 against spectral:81.
   double error(const ColourModel& model) const;

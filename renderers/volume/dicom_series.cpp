@@ -112,9 +112,7 @@ void readPixelFormat(const gdcm::StringFilter& filter, const gdcm::File& file, S
                                static_cast<unsigned short>(high),
                                static_cast<unsigned short>(is_signed));
   if (file.GetDataSet().FindDataElement(kPhotometric))
-    s.photometric = filter.ToString(kPhotometric);
-  while (!s.photometric.empty() && (s.photometric.back() == ' ' || s.photometric.back() == '\0'))
-    s.photometric.pop_back();
+    s.photometric = withoutPadding(filter.ToString(kPhotometric));
   if (s.photometric != "MONOCHROME1" && s.photometric != "MONOCHROME2")
     throw Error(fmt::format("{}: PhotometricInterpretation is '{}'; svr reads grey-value series "
                             "(MONOCHROME1 or MONOCHROME2)",
@@ -265,8 +263,11 @@ std::vector<std::byte> decodePixels(const SliceHeader& s) {
 class DicomStack final : public SliceStack {
  public:
   DicomStack(std::vector<SliceHeader> slices, bool rescale)
-      : slices_(std::move(slices)), stored_(slices_.front().stored), rescale_(rescale) {}
-  ScalarType type() const override { return rescale_ ? ScalarType::kFloat32 : stored_; }
+      : slices_(std::move(slices)), rescale_(rescale) {}
+  // The series' files share one stored type (checkSeries).
+  ScalarType type() const override {
+    return rescale_ ? ScalarType::kFloat32 : slices_.front().stored;
+  }
   std::vector<std::byte> slice(int z) const override {
     const SliceHeader& s = slices_[static_cast<std::size_t>(z)];
     const std::size_t n = static_cast<std::size_t>(s.rows) * s.columns;
@@ -284,7 +285,6 @@ class DicomStack final : public SliceStack {
 
  private:
   std::vector<SliceHeader> slices_;
-  ScalarType stored_;
   bool rescale_;
 };
 

@@ -11,6 +11,7 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <utility>
 
 #include "base/error.h"
 
@@ -151,8 +152,7 @@ class StructureWalk {
         syntax.resize(h.length);
         in_.seekg(static_cast<std::streamoff>(h.value_at));
         in_.read(syntax.data(), h.length);
-        while (!syntax.empty() && (syntax.back() == '\0' || syntax.back() == ' '))
-          syntax.pop_back();
+        syntax = withoutPadding(std::move(syntax));
         has_syntax = true;
       }
       at = h.end();
@@ -255,5 +255,10 @@ class StructureWalk {
 }  // namespace
 
 void checkDicomStructure(const std::string& path) { StructureWalk(path).run(); }
+
+std::string withoutPadding(std::string value) {
+  while (!value.empty() && (value.back() == '\0' || value.back() == ' ')) value.pop_back();
+  return value;
+}
 
 }  // namespace svr::detail

@@ -21,4 +21,7 @@ namespace svr::detail {
 // Throws svr::Error "PATH: <what> at byte N" for the first fault.
 void checkDicomStructure(const std::string& path);
 
+// A value without the padding DICOM adds to make its length even (a space, or NUL for UIDs).
+std::string withoutPadding(std::string value);
+
 }  // namespace svr::detail
