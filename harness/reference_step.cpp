@@ -52,7 +52,8 @@ ReferenceStep convergedReferenceStep(const Scene& scene, const Observer& observe
   out.target = target;
   out.finest_voxels = finest_voxels;
   out.probe_size = fmt::format("{}×{}", probe.width, probe.height);
-  out.step_voxels = std::max(start_voxels, finest_voxels);
+  // Never coarser than the start: a scene already finer than finest_voxels keeps its step.
+  out.step_voxels = start_voxels;
   LightIndependentImage coarse = render(out.step_voxels);
   for (;;) {
     const double half = out.step_voxels / 2;

@@ -27,8 +27,9 @@ struct ReferenceStep {
 
 inline constexpr double kReferenceStepTarget = 0.1;
 
-// Starts at `start_voxels`; never goes below `finest_voxels` (1/16 voxel: issue 51's converged
-// step; the probe renders its half, 1/32, to measure it).
+// Starts at `start_voxels` and halves it only while the half is ≥ `finest_voxels` (1/16
+// voxel: issue 51's converged step); the probe renders the chosen step's half to measure it. A
+// start finer than finest_voxels is kept (the reference is never coarser than the scene).
 ReferenceStep convergedReferenceStep(const Scene& scene, const Observer& observer,
                                      double start_voxels, double target = kReferenceStepTarget,
                                      double finest_voxels = 1.0 / 16);

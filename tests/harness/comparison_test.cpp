@@ -134,6 +134,8 @@ TEST(Comparison, ReferenceStepHalvesUntilConverged) {
   const ReferenceStep chosen = convergedReferenceStep(scene, observer, 0.25);
   EXPECT_LE(chosen.halving_de2000, kReferenceStepTarget);
   EXPECT_TRUE(chosen.converged);
+  // A start already finer than the finest step is kept, never coarsened.
+  EXPECT_EQ(convergedReferenceStep(scene, observer, 0.05, 0.0).step_voxels, 0.05);
 }
 
 TEST(Sweep, ThreeChannelsBreakDownUnderDeepAbsorptionWhereSixHold) {
