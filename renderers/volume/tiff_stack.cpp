@@ -14,6 +14,7 @@
 #include <memory>
 #include <mutex>
 
+#include "renderers/volume/memory_budget.h"
 #include "renderers/volume/volume_source.h"
 #include "base/error.h"
 
@@ -101,8 +102,11 @@ PageLayout pageLayout(TIFF* tif, const std::string& where) {
   return p;
 }
 
-// The current page's pixels, x fastest, native byte order.
-std::vector<std::byte> readPage(TIFF* tif, const PageLayout& p, const std::string& where) {
+// The current page's pixels, x fastest, native byte order. A tile buffer is sized by the tile
+// tags, which may be far larger than the page (a fuzzed TileWidth asked for 32 GiB), so it must
+// fit the memory budget.
+std::vector<std::byte> readPage(TIFF* tif, const PageLayout& p, const std::string& where,
+                                std::uint64_t budget) {
   const std::size_t w = bytesPerVoxel(p.type), row = p.width * w;
   std::vector<std::byte> out(row * p.height);
   tiff_message.clear();
@@ -114,6 +118,8 @@ std::vector<std::byte> readPage(TIFF* tif, const PageLayout& p, const std::strin
     TIFFGetField(tif, TIFFTAG_TILEWIDTH, &tw);
     TIFFGetField(tif, TIFFTAG_TILELENGTH, &th);
     if (tw == 0 || th == 0) throw Error(fmt::format("{}: a tile is {} × {}", where, tw, th));
+    checkMemoryBudget(std::uint64_t{tw} * th * w, budget,
+                      fmt::format("{}: a tile of {} × {} {}", where, tw, th, toString(p.type)));
     std::vector<std::byte> tile(static_cast<std::size_t>(TIFFTileSize(tif)));
     if (tile.size() < std::size_t{tw} * th * w)
       throw Error(fmt::format("{}: tiles of {} bytes cannot hold {} × {} samples", where,
@@ -144,8 +150,8 @@ std::vector<std::byte> readPage(TIFF* tif, const PageLayout& p, const std::strin
 // One page per slice: a multi-page file (pages in order) or numbered files (a page each).
 class TiffStack final : public SliceStack {
  public:
-  TiffStack(std::vector<std::string> files, bool pages, PageLayout layout)
-      : files_(std::move(files)), pages_(pages), layout_(layout) {}
+  TiffStack(std::vector<std::string> files, bool pages, PageLayout layout, std::uint64_t budget)
+      : files_(std::move(files)), pages_(pages), layout_(layout), budget_(budget) {}
   ScalarType type() const override { return layout_.type; }
   std::vector<std::byte> slice(int z) const override {
     const std::string& file = files_[pages_ ? 0 : z];
@@ -163,7 +169,7 @@ class TiffStack final : public SliceStack {
                               "match",
                               where, describe(page), page.compression, describe(layout_),
                               layout_.compression));
-    std::vector<std::byte> pixels = readPage(open_.get(), page, where);
+    std::vector<std::byte> pixels = readPage(open_.get(), page, where, budget_);
     if (!pages_) open_.reset();
     return pixels;
   }
@@ -172,6 +178,7 @@ class TiffStack final : public SliceStack {
   std::vector<std::string> files_;
   bool pages_;
   PageLayout layout_;
+  std::uint64_t budget_;
   mutable TiffPtr open_;
   mutable int current_ = -1;
 };
@@ -213,7 +220,8 @@ std::vector<std::string> numberedFiles(const std::string& folder) {
 
 }  // namespace
 
-VolumeSource readTiffSource(const std::string& path, const glm::dvec3& spacing) {
+VolumeSource readTiffSource(const std::string& path, const glm::dvec3& spacing,
+                            std::uint64_t budget) {
   const bool folder = fs::is_directory(path);
   std::vector<std::string> files = folder ? numberedFiles(path) : std::vector<std::string>{path};
   const TiffPtr first = openTiff(files[0]);
@@ -245,7 +253,7 @@ VolumeSource readTiffSource(const std::string& path, const glm::dvec3& spacing) 
   h.spacing = spacing;
   h.orientation = folder ? fmt::format("{} numbered files, a page each, in number order", depth)
                          : fmt::format("{} page{}, in file order", depth, depth == 1 ? "" : "s");
-  source.slices = std::make_shared<TiffStack>(std::move(files), !folder, layout);
+  source.slices = std::make_shared<TiffStack>(std::move(files), !folder, layout, budget);
   return source;
 }
 

@@ -66,7 +66,8 @@ VolumeSource openSource(const std::string& path, const VolumeLoadOptions& option
     throw Error(fmt::format("{}: states its own spacing (a spacing is given only for TIFF "
                             "stacks, and in a raw layout)",
                             path));
-  if (tiff) return detail::readTiffSource(path, options.spacing.value_or(glm::dvec3(1.0)));
+  if (tiff) return detail::readTiffSource(path, options.spacing.value_or(glm::dvec3(1.0)),
+                                          options.memory_budget);
   if (fs::is_directory(status)) return detail::readDicomSource(path, options.memory_budget);
   if (extension == ".nrrd" || extension == ".nhdr") return detail::readNrrdSource(path, options.memory_budget);
   if (extension == ".mhd" || extension == ".mha") return detail::readMetaImageSource(path, options.memory_budget);

@@ -70,9 +70,11 @@ std::vector<std::byte> readPayloadLattice(const VolumeSource& source, const Latt
 VolumeSource readNrrdSource(const std::string& path, std::uint64_t budget);
 VolumeSource readMetaImageSource(const std::string& path, std::uint64_t budget);
 // nifti_source.cpp, tiff_stack.cpp (a file or a folder of numbered files), dicom_series.cpp
-// (a folder holding one series; a slice, which GDCM decodes whole, must fit `budget`).
+// (a folder holding one series; a slice, which GDCM decodes whole, must fit `budget`, as must
+// a TIFF tile).
 VolumeSource readNiftiSource(const std::string& path);
-VolumeSource readTiffSource(const std::string& path, const glm::dvec3& spacing);
+VolumeSource readTiffSource(const std::string& path, const glm::dvec3& spacing,
+                            std::uint64_t budget);
 VolumeSource readDicomSource(const std::string& folder, std::uint64_t budget);
 // Voxels of `box` from a slice stack, x fastest (slices outside the box's z are not read).
 std::vector<std::byte> readSliceBox(const SliceStack& stack, const Dims& dims, const VoxelBox& box);

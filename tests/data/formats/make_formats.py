@@ -155,6 +155,9 @@ def tiff():
         Image.fromarray(GRID[:, :, z].T.astype(np.uint16) + 50, mode="I;16").save(name)
         pages.append(name)
     subprocess.run(["tiffcp", "-c", "lzw", *pages, "stack.tif"], check=True)
+    # The same pages in 16 × 16 tiles: the tiled path, and a tile larger than the page.
+    subprocess.run(["tiffcp", "-t", "-w", "16", "-l", "16", "stack.tif", "stack_tiled.tif"],
+                   check=True)
     shutil.rmtree("numbered", ignore_errors=True)
     os.makedirs("numbered")
     for z, page in enumerate(pages):

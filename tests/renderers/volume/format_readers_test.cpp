@@ -165,6 +165,21 @@ TEST(FormatReaders, TiffMultiPageAndNumberedFolderMatchNrrd) {
   EXPECT_EQ(readVolumeHeader(kDir + "stack.tif").encoding, "LZW");
 }
 
+// Tiles are read as strips are; a tile's buffer (16 × 16 uint16 = 512 bytes, larger than the
+// 5 × 4 page) must fit the memory budget like the volume (120 bytes) does.
+TEST(FormatReaders, TiledTiffMatchesAndItsTilesCountInTheBudget) {
+  expectSameVolume(loadVolume(kDir + "stack_tiled.tif"), loadVolume(kDir + "stack.nrrd"));
+  VolumeLoadOptions tight;
+  tight.memory_budget = 200;
+  try {
+    loadVolume(kDir + "stack_tiled.tif", tight);
+    ADD_FAILURE() << "a tile over the budget was read";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("a tile of 16 × 16 uint16 needs"), std::string::npos)
+        << e.what();
+  }
+}
+
 TEST(FormatReaders, TiffSpacingComesFromTheCaller) {
   VolumeLoadOptions options;
   options.spacing = glm::dvec3(0.5, 0.25, 2.0);
