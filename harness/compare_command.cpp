@@ -8,6 +8,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <variant>
 
 #include "harness/command.h"
 #include "harness/image_files.h"
@@ -177,6 +178,7 @@ CompareSummary runComparison(Scene scene, const CompareOptions& o) {
       o.models.empty() ? std::vector<std::string>{"rgb", "factor:3", "factor:4", "factor:6",
                                                   "factor:8", "spectral:31"}
                        : o.models;
+  for (const auto& m : models) checkModelName(m, "--models");  // as for the backends
   const std::vector<RunSpec> specs = runSpecs(o, renderers, models);
 
   std::error_code ec;
@@ -196,7 +198,9 @@ CompareSummary runComparison(Scene scene, const CompareOptions& o) {
       if (std::find(summary.skipped.begin(), summary.skipped.end(), note) == summary.skipped.end())
         summary.skipped.push_back(note);
     } else {
-      summary.runs.push_back(session.run(spec));
+      auto outcome = session.tryRun(spec);
+      if (auto* run = std::get_if<RunResult>(&outcome)) summary.runs.push_back(std::move(*run));
+      else summary.failed.push_back(std::get<FailedRun>(std::move(outcome)));
     }
     progress.advance(spec.label());
   }
@@ -217,11 +221,18 @@ CompareSummary runComparison(Scene scene, const CompareOptions& o) {
   report["runs"] = nlohmann::json::array();
   for (const auto& run : summary.runs)
     report["runs"].push_back(runReport(run, scene, summary.exceedances, o.out_dir));
-  report["pass"] = summary.exceedances.empty();
+  report["pass"] = summary.exceedances.empty() && summary.failed.empty();
   nlohmann::json misses = nlohmann::json::array();
   for (const auto& m : summary.exceedances) misses.push_back(m.str());
   report["exceedances"] = misses;
   report["skipped"] = summary.skipped;
+  report["failed"] = nlohmann::json::array();
+  for (const auto& f : summary.failed)
+    report["failed"].push_back({{"renderer", f.spec.renderer},
+                                {"model_asked", f.spec.model},
+                                {"options", f.spec.options},
+                                {"label", f.spec.label()},
+                                {"error", f.error}});
   writeJson((fs::path(o.out_dir) / "report.json").string(), report);
   if (o.charts) renderReportCharts(o.out_dir);
   summary.report = std::move(report);
@@ -257,15 +268,27 @@ void printSummaryTable(const CompareSummary& s) {
                1000.0 / std::max(run.relight_ms, 1e-9), de, model, sampling, vr,
                pass ? "yes" : "NO");
   }
+  for (const auto& f : s.failed) fmt::print("{:<40} FAILED (error below)\n", f.spec.label());
+}
+
+void printSummaryNotes(const CompareSummary& s) {
+  for (const auto& note : s.skipped) fmt::print(stderr, "svr: note: {}\n", note);
+  for (const auto& m : s.exceedances) fmt::print(stderr, "svr: tolerance: {}\n", m.str());
+  for (const auto& f : s.failed)
+    fmt::print(stderr, "svr: error: run '{}' failed: {}\n", f.spec.label(), f.error);
+}
+
+int compareExitStatus(const CompareSummary& s) {
+  if (!s.failed.empty()) return 2;
+  return s.exceedances.empty() ? 0 : 1;
 }
 
 int runCompare(const CompareOptions& o) {
   const CompareSummary s = runComparison(o);
   if (!o.quiet) printSummaryTable(s);
-  for (const auto& note : s.skipped) fmt::print(stderr, "svr: note: {}\n", note);
-  for (const auto& m : s.exceedances) fmt::print(stderr, "svr: tolerance: {}\n", m.str());
+  printSummaryNotes(s);
   if (!o.quiet) fmt::print("report: {}\n", (fs::path(o.out_dir) / "report.html").string());
-  return s.exceedances.empty() ? 0 : 1;
+  return compareExitStatus(s);
 }
 
 namespace commands {

@@ -1,7 +1,8 @@
 #pragma once
 // `svr compare SCENE`: the reference and every backend × model on one scene; writes the report
 // folder (report.json, relit PNGs, ΔE2000 maps, speed_accuracy.png, report.html) and exits
-// non-zero when a tolerance is exceeded, naming the run, light, metric, value and tolerance.
+// non-zero when a tolerance is exceeded, naming the run, light, metric, value and tolerance, or
+// when a run failed; the runs that worked are reported either way.
 
 #include <string>
 #include <vector>
@@ -27,20 +28,29 @@ struct CompareSummary {
   std::vector<RunResult> runs;
   std::vector<Exceedance> exceedances;
   std::vector<std::string> skipped;  // "shearwarp skipped: … orthographic cameras only …"
+  std::vector<FailedRun> failed;     // runs that ended in an error, with it
   double reference_ms = 0.0;
   ReferenceStep reference_step;
   nlohmann::json report;  // what report.json holds
 };
 
 // Runs every comparison and writes report.json and the images into out_dir (charts and HTML
-// too when options.charts). Throws svr::Error for bad input; tolerance misses are returned.
+// too when options.charts). Throws svr::Error for bad input (an unknown backend or model name,
+// an unreadable scene) and when the reference fails; tolerance misses and failed runs are
+// returned.
 CompareSummary runComparison(const CompareOptions& options);
 // The same for a scene already loaded (the Python module's); options.scene names it.
 CompareSummary runComparison(Scene scene, const CompareOptions& options);
-// The command: runComparison, a table on stdout, one line per exceedance; 0, or 1 on a miss.
+// The command: runComparison, a table on stdout, one line per exceedance and per failed run, and
+// compareExitStatus.
 int runCompare(const CompareOptions& options);
-// Prints the summary table (backend × model: ms/frame, relight fps, mean ΔE2000, pass).
+// 0; 1 when a tolerance was missed; 2 when a run failed (as for any other error).
+int compareExitStatus(const CompareSummary& summary);
+// Prints the summary table (backend × model: ms/frame, relight fps, mean ΔE2000, pass; failed
+// runs with their error).
 void printSummaryTable(const CompareSummary& summary);
+// The skipped runs, tolerance misses and failed runs on stderr, one line each.
+void printSummaryNotes(const CompareSummary& summary);
 
 // Runs harness/report.py on a report folder (charts, heat maps, report.html).
 void renderReportCharts(const std::string& out_dir);

@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include <chrono>
+#include <new>
 
 #include "renderers/classification/classification.h"
 #include "renderers/render/scene_render.h"
@@ -118,6 +119,18 @@ const ComparisonSession::Rendered& ComparisonSession::renderOnce(
 std::optional<std::string> ComparisonSession::unsupported(const std::string& renderer) const {
   // The view is what differs between scenes; channel counts are checked when a run renders.
   return unsupportedBy(backendEntry(renderer).info, scene_.camera, 1, 1);
+}
+
+std::variant<RunResult, FailedRun> ComparisonSession::tryRun(const RunSpec& spec) {
+  try {
+    return run(spec);
+  } catch (const Cancelled&) {
+    throw;
+  } catch (const Error& e) {
+    return FailedRun{spec, e.what()};
+  } catch (const std::bad_alloc&) {
+    return FailedRun{spec, "out of memory (std::bad_alloc)"};
+  }
 }
 
 RunResult ComparisonSession::run(const RunSpec& spec) {

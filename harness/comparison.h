@@ -11,6 +11,7 @@
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
+#include <variant>
 #include <vector>
 
 #include "harness/reference_step.h"
@@ -75,6 +76,14 @@ struct RunResult {
   std::vector<LightResult> lights;
 };
 
+// A run that ended in an error (training, non-finite output, memory, a backend option this
+// scene cannot take): the harness records it with its error and reports the runs that worked
+// (issue 49).
+struct FailedRun {
+  RunSpec spec;
+  std::string error;
+};
+
 // A named light or mix of the scene, as a unit-luminance spectrum.
 struct SceneIllumination {
   std::string name;
@@ -94,6 +103,9 @@ class ComparisonSession {
 
   // Renders and measures one run. Throws svr::Error for unknown renderers or bad options.
   RunResult run(const RunSpec& spec);
+  // run(spec), or the failure it ended in: an svr::Error or std::bad_alloc. A cancelled render
+  // or an interrupt is no failure of the run; it propagates.
+  std::variant<RunResult, FailedRun> tryRun(const RunSpec& spec);
   // Why this backend cannot render the scene's view (a perspective camera for shear-warp), or
   // nothing; the harness skips such runs with this note instead of failing.
   std::optional<std::string> unsupported(const std::string& renderer) const;

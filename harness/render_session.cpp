@@ -34,15 +34,7 @@ void checkFrameSettings(const FrameSettings& s, const WavelengthGrid& grid) {
                             "distributed render; use {}",
                             s.renderer, fmt::join(able, " or ")));
   }
-  if (s.model.empty() || s.model == "auto") return;
-  try {
-    const ModelName name = parseModelName(s.model);
-    if (name.kind == ModelKind::kSpectral && name.k > grid.count)
-      throw Error(fmt::format("spectral:{} asks for more bands than the {} samples of the grid",
-                              name.k, grid.count));
-  } catch (const Error& e) {
-    throw Error(fmt::format("{} '{}': {}", s.model_flag, s.model, e.what()));
-  }
+  if (!s.model.empty()) checkModelName(s.model, s.model_flag, grid);
 }
 
 }  // namespace

@@ -195,6 +195,11 @@ def section(folder, report):
              f"<b>{'pass' if report['pass'] else 'FAIL'}</b></p>"]
     for miss in report.get("exceedances", []):
         parts.append(f"<p class=miss>{e(miss)}</p>")
+    # A run that failed is reported with its error; the runs that worked are shown below.
+    for failed in report.get("failed", []):
+        parts.append(f"<p class=miss>{e(failed['label'])} failed: {e(failed['error'])}</p>")
+    for note in report.get("skipped", []):
+        parts.append(f"<p>{e(note)}</p>")
     # How each colour model was made (auto: which k and the palette error that justified it).
     described = {}
     for run in report["runs"]:
@@ -262,7 +267,8 @@ def sweep(folder):
     for curve in s["renderers"]:
         de = [np.nan if v is None else v for v in curve["de_mean"]]
         a1.plot(s["values"], de, marker=".", label=curve["renderer"])
-        a2.plot(s["values"], curve["ms"], marker=".", label=curve["renderer"])
+        ms = [np.nan if v is None else v for v in curve["ms"]]  # None: the run failed
+        a2.plot(s["values"], ms, marker=".", label=curve["renderer"])
         for flag in curve["flags"]:
             if flag.startswith("jump at "):
                 x = float(flag.split()[2])

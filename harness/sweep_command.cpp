@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <variant>
 #include <glm/geometric.hpp>
 
 #include "harness/command.h"
@@ -100,6 +101,7 @@ SweepResult runSweepStudy(const SweepOptions& o) {
     nlohmann::json options = nlohmann::json::object();
     apply(range, v, base, s, model, options);
     checkRendererOptions(options, fmt::format("--param '{}' at {}", o.param, v));
+    checkModelName(model, fmt::format("--param '{}' at {}: model", o.param, v));
   }
 
   Progress progress("sweep", static_cast<int>(result.values.size()), o.quiet);
@@ -110,7 +112,15 @@ SweepResult runSweepStudy(const SweepOptions& o) {
     apply(range, v, base, s, model, options);
     ComparisonSession session(s, o.data_dir);
     for (auto& curve : result.curves) {
-      const RunResult run = session.run({curve.renderer, model, options});
+      auto outcome = session.tryRun({curve.renderer, model, options});
+      if (const auto* failed = std::get_if<FailedRun>(&outcome)) {
+        curve.de_mean.push_back(NAN);
+        curve.ms.push_back(NAN);
+        curve.errors.push_back(failed->error);
+        continue;
+      }
+      const RunResult& run = std::get<RunResult>(outcome);
+      curve.errors.emplace_back();
       double de = 0.0;
       bool finite = true;
       for (const auto& l : run.lights) {
@@ -135,7 +145,9 @@ SweepResult runSweepStudy(const SweepOptions& o) {
     const double median = sorted.empty() ? 0.0 : sorted[sorted.size() / 2];
     for (size_t i = 0; i < curve.de_mean.size(); ++i) {
       const double v = result.values[i], de = curve.de_mean[i];
-      if (!std::isfinite(de)) curve.flags.push_back(fmt::format("non-finite at {}", v));
+      if (!curve.errors[i].empty())
+        curve.flags.push_back(fmt::format("failed at {}: {}", v, curve.errors[i]));
+      else if (!std::isfinite(de)) curve.flags.push_back(fmt::format("non-finite at {}", v));
       else if (de > 50) curve.flags.push_back(fmt::format("blow-up at {} (mean ΔE2000 {:.1f})", v, de));
       if (i > 0 && std::isfinite(de) && std::isfinite(curve.de_mean[i - 1])) {
         const double jump = std::abs(de - curve.de_mean[i - 1]);
@@ -152,11 +164,17 @@ SweepResult runSweepStudy(const SweepOptions& o) {
   nlohmann::json j = {{"scene", o.scene}, {"param", range.name}, {"values", result.values},
                       {"model", o.model}};
   j["renderers"] = nlohmann::json::array();
-  for (const auto& c : result.curves) {
-    nlohmann::json de = nlohmann::json::array();
-    for (double d : c.de_mean) de.push_back(std::isfinite(d) ? nlohmann::json(d) : nlohmann::json());
-    j["renderers"].push_back({{"renderer", c.renderer}, {"de_mean", de}, {"ms", c.ms}, {"flags", c.flags}});
-  }
+  const auto finiteOrNull = [](const std::vector<double>& values) {
+    nlohmann::json out = nlohmann::json::array();
+    for (double d : values) out.push_back(std::isfinite(d) ? nlohmann::json(d) : nlohmann::json());
+    return out;
+  };
+  for (const auto& c : result.curves)
+    j["renderers"].push_back({{"renderer", c.renderer},
+                              {"de_mean", finiteOrNull(c.de_mean)},
+                              {"ms", finiteOrNull(c.ms)},
+                              {"errors", c.errors},
+                              {"flags", c.flags}});
   const fs::path path = fs::path(o.out_dir) / "sweep.json";
   writeTextAtomically(path.string(), j.dump(1) + "\n");
   if (o.charts) renderReportCharts(o.out_dir);
@@ -167,7 +185,10 @@ int runSweep(const SweepOptions& o) {
   const SweepResult r = runSweepStudy(o);
   if (!o.quiet) {
     for (const auto& c : r.curves) {
-      const auto worst = std::max_element(c.de_mean.begin(), c.de_mean.end());
+      // The worst finite value (a failed or non-finite run is flagged below, not ranked).
+      const auto worst = std::max_element(c.de_mean.begin(), c.de_mean.end(), [](double a, double b) {
+        return std::isfinite(b) && (!std::isfinite(a) || a < b);
+      });
       fmt::print("{}: {} values of {}; worst mean ΔE2000 {:.3f} at {}\n", c.renderer,
                  r.values.size(), r.param, worst == c.de_mean.end() ? NAN : *worst,
                  worst == c.de_mean.end() ? NAN : r.values[worst - c.de_mean.begin()]);
@@ -175,7 +196,15 @@ int runSweep(const SweepOptions& o) {
     }
     fmt::print("sweep: {}\n", (fs::path(o.out_dir) / "sweep.json").string());
   }
-  return 0;
+  int status = 0;
+  for (const auto& c : r.curves)
+    for (std::size_t i = 0; i < c.errors.size(); ++i)
+      if (!c.errors[i].empty()) {
+        fmt::print(stderr, "svr: error: {} at {} = {} failed: {}\n", c.renderer, r.param,
+                   r.values[i], c.errors[i]);
+        status = 2;
+      }
+  return status;
 }
 
 namespace commands {

@@ -27,8 +27,10 @@ struct SweepOptions {
 
 struct SweepCurve {
   std::string renderer;
-  std::vector<double> de_mean, ms;
-  std::vector<std::string> flags;  // "jump at 45", "non-finite at 12", "blow-up at 3"
+  std::vector<double> de_mean, ms;  // NaN where the run failed
+  std::vector<std::string> errors;  // per value: why its run failed; empty where it worked
+  std::vector<std::string> flags;   // "jump at 45", "non-finite at 12", "blow-up at 3",
+                                    // "failed at 2: …"
 };
 
 struct SweepResult {
@@ -38,6 +40,7 @@ struct SweepResult {
 };
 
 SweepResult runSweepStudy(const SweepOptions& options);  // also writes sweep.json (+ chart)
+// The command: a line per curve and flag; 0, or 2 when a run failed (the others are reported).
 int runSweep(const SweepOptions& options);
 
 }  // namespace svr

@@ -243,6 +243,18 @@ nlohmann::json SceneModel::record() const {
   return j;
 }
 
+void checkModelName(const std::string& name, const std::string& flag, const WavelengthGrid& grid) {
+  if (name == "auto") return;
+  try {
+    const ModelName parsed = parseModelName(name);
+    if (parsed.kind == ModelKind::kSpectral && parsed.k > grid.count)
+      throw Error(fmt::format("spectral:{} asks for more bands than the {} samples of the grid",
+                              parsed.k, grid.count));
+  } catch (const Error& e) {
+    throw Error(fmt::format("{} '{}': {}", flag, name, e.what()));
+  }
+}
+
 SceneModel makeSceneModel(const std::string& name, const Scene& scene, const Observer& observer) {
   if (name == "auto") return chooseAutoModel(scene, observer);
   const ModelName parsed = parseModelName(name);

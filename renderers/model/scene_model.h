@@ -25,6 +25,7 @@
 #include "spectral/colorimetry.h"
 #include "spectral/colour_model.h"
 #include "spectral/light_independent_image.h"
+#include "spectral/wavelength_grid.h"
 
 namespace svr {
 
@@ -71,6 +72,12 @@ class ModelProbe {
   std::unique_ptr<ColourModel> reference_model_;
   LightIndependentImage reference_;
 };
+
+// Throws svr::Error "FLAG 'NAME': why" unless NAME is auto or a model that can be made on `grid`
+// (a known kind, k in range, spectral:n with n no more than the grid's samples): what a flag
+// or key names is checked before anything renders.
+void checkModelName(const std::string& name, const std::string& flag,
+                    const WavelengthGrid& grid = WavelengthGrid::standard());
 
 // Trained models are cached on disk, keyed by everything they depend on (DiskCache::process();
 // off with --no-cache).
