@@ -153,6 +153,13 @@ void ViewServer::answerRender(const httplib::Request& req, httplib::Response& re
   r.view.zoom = q.number("zoom", 1.0, 0.01, 100);
   r.width = q.integer("width", info["width"], 1, ViewSession::kMaxSide);
   r.height = q.integer("height", info["height"], 1, ViewSession::kMaxSide);
+  const std::int64_t planes = info["channels"].get<std::int64_t>() + info["t_channels"].get<std::int64_t>();
+  if (std::int64_t{r.width} * r.height * planes > ViewSession::kMaxFrameValues)
+    throw BadRequest(fmt::format(
+        "a {}×{} frame of {} planes holds {} values, over the viewer's limit of {}; ask for at "
+        "most {} pixels",
+        r.width, r.height, planes, std::int64_t{r.width} * r.height * planes,
+        ViewSession::kMaxFrameValues, ViewSession::kMaxFrameValues / planes));
   if (q.has("samples")) {
     const std::string samples = q.text("samples", "", 8);
     if (samples != "half" && samples != "float")

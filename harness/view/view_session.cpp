@@ -36,7 +36,8 @@ ViewSession::ViewSession(const ViewOptions& options)
   const ColourModel& model = *session_->model().model;
   const int planes = model.imageChannels() + classified().t_channels;
   if (planes > kMaxPlanes)
-    throw Error(fmt::format("view: model {} makes {} image planes; the viewer relights at most {}",
+    throw Error(fmt::format("view: model {} makes {} image planes; the page relights at most {} "
+                            "(WebGL2's 224 fragment uniform vectors)",
                             model.name(), planes, kMaxPlanes));
   const Scene& s = scene();
   initial_view_ = orbitViewOf(s.camera);
@@ -52,6 +53,7 @@ ViewSession::ViewSession(const ViewOptions& options)
   scene_info_ = pageSceneInfo(lightContext(), s, session_->model(), session_->renderer().name(),
                               initial_view_, samples_);
   scene_info_["max_side"] = kMaxSide;
+  scene_info_["max_frame_values"] = kMaxFrameValues;
   scene_info_["read_only"] = options.read_only;
 }
 

@@ -56,9 +56,14 @@ struct ViewFrame {
 
 class ViewSession {
  public:
-  // Limits on what one request may ask for, so that memory stays bounded.
+  // Limits on what one request may ask for, so that memory stays bounded: a side, and the
+  // values of one frame, planes × pixels (2048² × 32: 512 MiB as floats). A model of many planes
+  // (spectral:81 with spectral absorbers: 162) is served at a smaller size.
   static constexpr int kMaxSide = 2048;
-  static constexpr int kMaxPlanes = 32;
+  static constexpr std::int64_t kMaxFrameValues = std::int64_t{2048} * 2048 * 32;
+  // The page relights with one mat4x3 uniform (four vectors) per texture layer of four planes,
+  // and WebGL2 guarantees 224 fragment uniform vectors: 56 layers, 224 planes.
+  static constexpr int kMaxPlanes = 224;
 
   // Loads, classifies, and renders the initial view once (which decides half or float samples,
   // chooseSamples) and a tiny frame along each axis: that builds what the backend keeps per

@@ -287,7 +287,7 @@ async function checkSaveMix() {
   await page.close();
 }
 
-// The issue's numbers: relight fps at 800², view-change latency and orbit fps at 512². All but
+// The issue's numbers: relight fps at 800² and 512², view-change latency and orbit fps at 512². All but
 // the WebGL2 rows are measured in a Chromium without SwiftShader, as on a machine without
 // WebGL2 (the page then relights in JS): given SwiftShader, Chromium composites the page with it
 // too, which alone caps animation frames at about 45 per second here (60 without).
@@ -311,6 +311,14 @@ async function measure() {
         if (performance.now() - t0 < 2000) requestAnimationFrame(step); else resolve(n / ((performance.now() - t0) / 1000)); };
       requestAnimationFrame(step);
     }));
+    await page.close();
+  }
+  // Back to back at 512² too: the size the colour-model issue (40) quotes for models of many
+  // planes (spectral:81 with a spectral absorber: 162).
+  for (const relight of ["js", "webgl2"]) {
+    const page = await openPage(pageUrl(url, `relight=${relight}`, "#size=512x512"), relight === "js" ? plain : browser);
+    await page.evaluate(() => svr.benchRelight(5));
+    out[`relight_512_${relight}`] = await page.evaluate(() => svr.benchRelight(60));
     await page.close();
   }
   const page = await openPage(pageUrl(url, "", "#size=512x512"), plain);

@@ -24,8 +24,8 @@ namespace {
 namespace fs = std::filesystem;
 
 // A small scene of its own: a procedural sphere, two library lights and a mix, the rgb model (no
-// training), so every test starts in well under a second.
-std::string writeScene(const fs::path& dir) {
+// training), so every test starts in well under a second; or another fixed model.
+std::string writeScene(const fs::path& dir, const std::string& model = "rgb") {
   fs::create_directories(dir);
   const fs::path file = dir / "sphere.json";
   std::ofstream(file) << R"json({
@@ -38,7 +38,7 @@ std::string writeScene(const fs::path& dir) {
   "light_mixes": {"half": {"D65": 0.5, "A": 0.5}},
   "background": "ColorChecker/white 9.5 (.05 D)",
   "image": {"width": 48, "height": 40},
-  "model": "rgb"
+  "model": ")json" << model << R"json("
 })json";
   return file.string();
 }
@@ -64,11 +64,11 @@ void expectPlanes(const std::string& planes, const LightIndependentImage& image,
 class ViewServerTest : public ::testing::Test {
  protected:
   void start(bool read_only = false, std::uint64_t budget = 0, const std::string& host = "127.0.0.1",
-             const std::string& token = "") {
+             const std::string& token = "", const std::string& model = "rgb") {
     dir_ = fs::temp_directory_path() / ("svr_view_test_" + std::to_string(::getpid()) + "_" +
                                         ::testing::UnitTest::GetInstance()->current_test_info()->name());
     ViewOptions o;
-    o.scene = writeScene(dir_);
+    o.scene = writeScene(dir_, model);
     o.renderer = "raycast";
     o.data_dir = SVR_TEST_DATA_DIR;
     o.read_only = read_only;
@@ -247,6 +247,27 @@ TEST_F(ViewServerTest, ReadOnlyRefusesToSave) {
   ASSERT_TRUE(r);
   EXPECT_EQ(r->status, 403);
   EXPECT_NE(r->body.find("--read-only"), std::string::npos);
+}
+
+TEST_F(ViewServerTest, TheExactModelIsServedWithinTheFrameValueLimit) {
+  // spectral:81 makes 81 S planes and one T plane: 2048² of them is over the 2048² × 32 values a
+  // frame may hold, refused before any work; the scene's own size is served, every plane.
+  start(false, 0, "127.0.0.1", "", "spectral:81");
+  const auto [status, body] = get("/api/render?width=2048&height=2048");
+  EXPECT_EQ(status, 400) << body;
+  EXPECT_NE(body.find("a 2048×2048 frame of 82 planes holds 343932928 values, over the viewer's "
+                      "limit of 134217728; ask for at most 1636801 pixels"),
+            std::string::npos)
+      << body;
+  const auto [ok, frame] = get("/api/render?width=48&height=40");
+  ASSERT_EQ(ok, 200) << frame;
+  const auto [header, planes] = splitFrame(frame);
+  EXPECT_EQ(header["channels"], 81);
+  EXPECT_EQ(header["t_channels"], 1);
+  const std::size_t sample_bytes = session_->sceneInfo()["samples"] == "half" ? 2 : 4;
+  EXPECT_EQ(planes.size(), 48u * 40u * 82u * sample_bytes);
+  const auto [scene_status, scene] = get("/api/scene");
+  EXPECT_EQ(nlohmann::json::parse(scene)["lights"][0]["matrix"][0].size(), 82u) << scene;
 }
 
 TEST_F(ViewServerTest, ARenderThatFailsAnswers500AndTheServerGoesOn) {
