@@ -5,39 +5,13 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
-#include <random>
 
 #include "base/error.h"
+#include "bench/models/corpus_draw.h"
 #include "renderers/volume/volume_io.h"
 
 namespace svr {
 namespace {
-
-// Draws from std::mt19937 mapped by hand, so a corpus scene is the same with any standard
-// library (the <random> distributions are implementation-defined).
-class Draw {
- public:
-  Draw(unsigned seed, int index) {
-    std::seed_seq seq{seed, static_cast<unsigned>(index), 0x5eedu};
-    rng_.seed(seq);
-  }
-  double uniform(double lo, double hi) { return lo + (hi - lo) * (rng_() / 4294967296.0); }
-  double logUniform(double lo, double hi) { return std::exp(uniform(std::log(lo), std::log(hi))); }
-  int integer(int lo, int hi) { return lo + static_cast<int>(rng_() % unsigned(hi - lo + 1)); }
-  bool chance(double p) { return uniform(0, 1) < p; }
-  template <class T>
-  const T& pick(const std::vector<T>& from) { return from[integer(0, int(from.size()) - 1)]; }
-  // `count` distinct entries.
-  template <class T>
-  std::vector<T> distinct(std::vector<T> from, int count) {
-    for (int i = 0; i < count; ++i) std::swap(from[i], from[integer(i, int(from.size()) - 1)]);
-    from.resize(count);
-    return from;
-  }
-
- private:
-  std::mt19937 rng_;
-};
 
 // A material's spectra: a reflectance from Munsell (most) or the ColorChecker; an absorption
 // that is achromatic, haemoglobin's, or another chip's shape; an extinction given as the optical
