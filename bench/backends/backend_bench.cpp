@@ -25,6 +25,7 @@
 #include "base/error.h"
 #include "bench/backends/backend_agreement.h"
 #include "bench/backends/view_corpus.h"
+#include "bench/models/corpus_bench.h"
 #include "renderers/registry.h"
 
 namespace svr {
@@ -63,12 +64,6 @@ Options parse(int argc, char** argv) {
   return o;
 }
 
-double quantile(std::vector<double> v, double q) {
-  if (v.empty()) return NAN;
-  std::sort(v.begin(), v.end());
-  return v[std::min(v.size() - 1, static_cast<size_t>(q * (v.size() - 1) + 0.5))];
-}
-
 void printTable(const Options& o, const std::map<std::string, std::vector<Agreement>>& runs) {
   fmt::print("{:<22} {:>7} {:>7} {:>7} {:>8} {:>7} {:>8} {:>7} {:>8}\n", "backend model", "median",
              "p95", "max", "in tol.", "≤1.0", "skipped", "failed", "ms");
@@ -95,16 +90,9 @@ void printTable(const Options& o, const std::map<std::string, std::vector<Agreem
     }
 }
 
-std::string csvField(std::string text) {
-  for (size_t q = 0; (q = text.find('"', q)) != std::string::npos; q += 2) text.insert(q, 1, '"');
-  return "\"" + text + "\"";
-}
-
 int benchMain(int argc, char** argv) {
   const Options o = parse(argc, argv);
-  const std::filesystem::path cache =
-      std::filesystem::temp_directory_path() / fmt::format("svr_backend_bench_{}", getpid());
-  setenv("XDG_CACHE_HOME", cache.c_str(), 1);  // factor:6 trained as a first-time user's would be
+  const PrivateModelCache cache("svr_backend_bench");  // factor:6 trained afresh
   const std::string data = defaultDataDir();
   const auto spectra = std::make_shared<const SessionSpectra>(data);
   const SpectrumLibrary& library = spectra->library;
@@ -139,7 +127,6 @@ int benchMain(int argc, char** argv) {
     }
   }
   if (progress) std::cerr << "\n";
-  std::filesystem::remove_all(cache);
   fmt::print("{} views of corpus seed {} from {}, each backend against raycast with the same "
              "model, mean ΔE2000 over the scene's lights\n", o.count, o.seed, o.first);
   if (o.count > 0) printTable(o, runs);
@@ -150,10 +137,5 @@ int benchMain(int argc, char** argv) {
 }  // namespace svr
 
 int main(int argc, char** argv) {
-  try {
-    return svr::benchMain(argc, argv);
-  } catch (const std::exception& e) {
-    std::cerr << "svr_backend_bench: " << e.what() << "\n";
-    return 2;
-  }
+  return svr::runCorpusBench("svr_backend_bench", svr::benchMain, argc, argv);
 }

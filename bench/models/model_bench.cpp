@@ -27,6 +27,7 @@
 
 #include "base/data_dir.h"
 #include "base/error.h"
+#include "bench/models/corpus_bench.h"
 #include "bench/models/scene_corpus.h"
 #include "renderers/model/scene_model.h"
 #include "spectral/colorimetry.h"
@@ -92,12 +93,6 @@ Run runModel(const std::string& name, const Scene& scene, const Observer& observ
   return run;
 }
 
-double quantile(std::vector<double> v, double q) {
-  if (v.empty()) return NAN;
-  std::sort(v.begin(), v.end());
-  return v[std::min(v.size() - 1, static_cast<size_t>(q * (v.size() - 1) + 0.5))];
-}
-
 // The table: per model over the scenes; comparisons with rgb and factor:(k−1) scene by scene.
 void printTable(const Options& o, const std::map<std::string, std::vector<Run>>& runs) {
   fmt::print("{:<10} {:>7} {:>7} {:>7} {:>7} {:>7} {:>8} {:>8} {:>8} {:>8} {:>6}\n", "model",
@@ -140,9 +135,7 @@ void printTable(const Options& o, const std::map<std::string, std::vector<Run>>&
 
 int benchMain(int argc, char** argv) {
   const Options o = parse(argc, argv);
-  const std::filesystem::path cache =
-      std::filesystem::temp_directory_path() / fmt::format("svr_model_bench_{}", getpid());
-  setenv("XDG_CACHE_HOME", cache.c_str(), 1);
+  const PrivateModelCache cache("svr_model_bench");
   const std::string data = defaultDataDir();
   const SpectrumLibrary library = SpectrumLibrary::load(data, WavelengthGrid::standard());
   const Observer observer = Observer::cie1931(data, WavelengthGrid::standard());
@@ -167,16 +160,12 @@ int benchMain(int argc, char** argv) {
       const Run run = runModel(name, scene, observer, probe);
       runs[name].push_back(run);
       if (csv) {
-        std::string status = run.status;  // a CSV field: its quotes doubled
-        for (size_t q = 0; (q = status.find('"', q)) != std::string::npos; q += 2)
-          status.insert(q, 1, '"');
-        csv << fmt::format("{},{},{},{},\"{}\",{}\n", i, name, run.error, run.train_s, status,
-                           run.chosen);
+        csv << fmt::format("{},{},{},{},{},{}\n", i, name, run.error, run.train_s,
+                           csvField(run.status), run.chosen);
       }
     }
   }
   if (progress) std::cerr << "\n";
-  std::filesystem::remove_all(cache);
   fmt::print("{} scenes of corpus seed {} from {}, {}² raycast, mean ΔE2000 against spectral:81 "
              "at the same sampling\n", o.count, o.seed, o.first, o.size);
   if (o.count > 0) printTable(o, runs);
@@ -187,10 +176,5 @@ int benchMain(int argc, char** argv) {
 }  // namespace svr
 
 int main(int argc, char** argv) {
-  try {
-    return svr::benchMain(argc, argv);
-  } catch (const std::exception& e) {
-    std::cerr << "svr_model_bench: " << e.what() << "\n";
-    return 2;
-  }
+  return svr::runCorpusBench("svr_model_bench", svr::benchMain, argc, argv);
 }
