@@ -10,10 +10,12 @@ namespace svr {
 
 BackendFrame renderBackendFrame(const std::shared_ptr<const SessionSpectra>& spectra,
                                 const Scene& scene, const std::string& renderer,
-                                const std::string& model) {
+                                const std::string& model,
+                                const std::vector<std::string>& options) {
   FrameSettings settings;
   settings.renderer = renderer;
   settings.model = model;
+  settings.options = options;
   RenderSession session(spectra, scene, settings, "view corpus");
   session.render();                    // the first frame builds what the backend keeps
   const double ms = session.render();  // a steady frame
@@ -24,7 +26,8 @@ BackendFrame renderBackendFrame(const std::shared_ptr<const SessionSpectra>& spe
 
 Agreement agreementWithRaycast(const std::shared_ptr<const SessionSpectra>& spectra,
                                const Scene& scene, const BackendFrame& raycast,
-                               const std::string& renderer, const std::string& model) {
+                               const std::string& renderer, const std::string& model,
+                               const std::vector<std::string>& options) {
   Agreement out;
   if (const auto why = unsupportedBy(backendEntry(renderer).info, scene.camera, 1, 1)) {
     out.status = Agreement::Status::kSkipped;
@@ -32,7 +35,7 @@ Agreement agreementWithRaycast(const std::shared_ptr<const SessionSpectra>& spec
     return out;
   }
   try {
-    const BackendFrame frame = renderBackendFrame(spectra, scene, renderer, model);
+    const BackendFrame frame = renderBackendFrame(spectra, scene, renderer, model, options);
     double mean_limit = INFINITY, p95_limit = INFINITY;
     for (const auto& t : tolerancesFor(renderer, scene.tolerances)) {
       if (t.metric == "de_vs_raycast_mean") mean_limit = t.limit;

@@ -21,10 +21,12 @@ struct BackendFrame {
   std::vector<Spectrum> lights;
 };
 
-// Throws svr::Error when the backend cannot render the scene.
+// Throws svr::Error when the backend cannot render the scene. options: BACKEND.KEY=VALUE over
+// the scene's render.options (as svr's --option).
 BackendFrame renderBackendFrame(const std::shared_ptr<const SessionSpectra>& spectra,
                                 const Scene& scene, const std::string& renderer,
-                                const std::string& model);
+                                const std::string& model,
+                                const std::vector<std::string>& options = {});
 
 struct Agreement {
   enum class Status { kRendered, kSkipped, kFailed } status = Status::kRendered;
@@ -37,6 +39,7 @@ struct Agreement {
 // `raycast`: the raycaster's frame of the scene with `model`.
 Agreement agreementWithRaycast(const std::shared_ptr<const SessionSpectra>& spectra,
                                const Scene& scene, const BackendFrame& raycast,
-                               const std::string& renderer, const std::string& model);
+                               const std::string& renderer, const std::string& model,
+                               const std::vector<std::string>& options = {});
 
 }  // namespace svr

@@ -7,7 +7,7 @@
 // median frame time; --csv keeps every view's figures.
 //
 //   svr_backend_bench [--count 200] [--first 0] [--seed 40] [--renderers …] [--models rgb,factor:6]
-//                     [--csv FILE] [-q] [--print]
+//                     [--option BACKEND.KEY=VALUE …] [--csv FILE] [-q] [--print]
 #include <fmt/format.h>
 #include <unistd.h>
 
@@ -35,6 +35,7 @@ struct Options {
   int count = 200, first = 0;
   unsigned seed = SceneCorpus::kDefaultSeed;
   std::vector<std::string> renderers, models{"rgb", "factor:6"};
+  std::vector<std::string> options;  // BACKEND.KEY=VALUE, as svr's --option
   std::string csv;
   bool quiet = false;
   bool print = false;  // print the views' JSON instead of running them
@@ -49,6 +50,9 @@ Options parse(int argc, char** argv) {
   app.add_option("--renderers", o.renderers, "backends (default: every one built but the raycaster)")
       ->delimiter(',');
   app.add_option("--models", o.models, "models, comma-separated")->delimiter(',');
+  app.add_option("--option", o.options,
+                 "BACKEND.KEY=VALUE over each view's render.options (repeatable), e.g. "
+                 "shearwarp.slice_samples=1");
   app.add_option("--csv", o.csv, "every view's figures to this file");
   app.add_flag("-q,--quiet", o.quiet, "no progress");
   app.add_flag("--print", o.print, "print the views' JSON instead of running them");
@@ -114,9 +118,10 @@ int benchMain(int argc, char** argv) {
     if (progress) std::cerr << fmt::format("\rview {} of {}", i - o.first + 1, o.count);
     const Scene scene = views.scene(i);
     for (const auto& m : o.models) {
-      const BackendFrame raycast = renderBackendFrame(spectra, scene, referenceRendererName(), m);
+      const BackendFrame raycast = renderBackendFrame(spectra, scene, referenceRendererName(), m,
+                                                        o.options);
       for (const auto& r : o.renderers) {
-        const Agreement x = agreementWithRaycast(spectra, scene, raycast, r, m);
+        const Agreement x = agreementWithRaycast(spectra, scene, raycast, r, m, o.options);
         runs[r + " " + m].push_back(x);
         if (!csv) continue;
         const char* status[] = {"rendered", "skipped", "failed"};

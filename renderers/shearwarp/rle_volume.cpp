@@ -38,8 +38,9 @@ struct SliceRows {
   const T* row(int j) const { return data + static_cast<std::size_t>(j) * row_stride; }
 };
 
-// Slices k0 − 1 .. k1 of an array (clamped to the volume), for the group of slices k0 .. k1 − 1
-// that one thread encodes (the neighbours give the gradient along the axis). The rows of y and z
+// Slices k0 − 1 .. k1 − 1 + after of an array (clamped to the volume), for the group of slices
+// k0 .. k1 − 1 that one thread encodes (the neighbours give the gradient along the axis; slices
+// between voxel slices, the next slice's too: after = 2). The rows of y and z
 // slices run along x, contiguous in memory, and are read in place. The rows of x slices run
 // along y, a volume row apart: read in place, every voxel would be a cache line of its own, read
 // once per slice that holds it; gathered for the group at once, each line is read once.
@@ -61,9 +62,10 @@ struct GatherBuffer {
 template <class T>
 class SliceGroup {
  public:
-  SliceGroup(const SliceLayout& layout, const T* array, int k0, int k1, GatherBuffer<T>& buffer)
+  SliceGroup(const SliceLayout& layout, const T* array, int k0, int k1, GatherBuffer<T>& buffer,
+             int after = 1)
       : layout_(layout), array_(array), first_(std::max(k0 - 1, 0)),
-        last_(std::min(k1, layout.n_k - 1)) {
+        last_(std::min(k1 - 1 + after, layout.n_k - 1)) {
     if (layout.stride_i == 1) return;
     const int count = last_ - first_ + 1;
     // Planes a cache line more than a slice apart: slices of power-of-two size would otherwise
@@ -71,7 +73,7 @@ class SliceGroup {
     plane_ = static_cast<std::size_t>(layout.n_i) * layout.n_j + 16;
     // Room for a whole group and both neighbours, which the first group (no slice before it)
     // does not use: the buffer is then sized once, not grown (and faulted in) again by the next.
-    T* const planes = buffer.get((k1 - k0 + 2) * plane_);
+    T* const planes = buffer.get((k1 - k0 + 1 + after) * plane_);
     // A transpose, in tiles of kTile voxels of a row by every slice of the group: each voxel's
     // slices are contiguous in the volume and its row neighbours a volume row apart, so a tile
     // reads kTile short contiguous runs and writes kTile-voxel runs of each slice.
@@ -208,6 +210,7 @@ struct EncoderScratch {
   std::vector<std::uint8_t> occupied;  // one cell row
   GatherBuffer<float> values, field;   // SliceGroup's gathered slices
   GatherBuffer<std::uint16_t> label_planes;
+  std::vector<VoxelRecord> next_records;  // a segment's records in the next voxel slice
   BlockArena records;                  // the records of the slices this thread encodes
 };
 
@@ -342,12 +345,14 @@ std::int32_t storeSegments(SliceEncoding& s, int n_j) {
   return stored;
 }
 
-// Slice k's runs and records. T: what the slices of `values` hold, the float values of a scalar
-// volume or a label map's 16-bit labels (read as such: a quarter of the memory traffic of the
-// labels' float copy that classification keeps for the other backends).
+// The runs and records of the slice at voxel position k + t along the axis (0 ≤ t < 1; t > 0
+// for scalar volumes only: values and gradients interpolated linearly from voxel slices k and
+// k + 1). T: what the slices of `values` hold, the float values of a scalar volume or a label
+// map's 16-bit labels (read as such: a quarter of the memory traffic of the labels' float copy
+// that classification keeps for the other backends).
 template <class T>
 void encodeSlice(const SliceSource& src, const SliceGroup<T>& values,
-                 const SliceGroup<float>& field, int k, EncoderScratch& scratch,
+                 const SliceGroup<float>& field, int k, float t, EncoderScratch& scratch,
                  SliceEncoding& s) {
   const ClassifiedVolume& cv = src.cv;
   constexpr int B = ClassifiedVolume::kBlock;
@@ -364,6 +369,7 @@ void encodeSlice(const SliceSource& src, const SliceGroup<T>& values,
   // one's right voxel, so that every record the runs below store has its key.
   scratch.keys.resize(static_cast<std::size_t>(n_i) * n_j);
   const SliceRows<T> rows = values.slice(k);
+  const SliceRows<T> next_rows = values.slice(k + 1);
   for (int j = 0; j < n_j; ++j) {
     int lo = n_i, hi = -1;
     for (int cj = std::max(j - 1, 0); cj <= std::min(j, n_j - 2); ++cj) {
@@ -383,8 +389,11 @@ void encodeSlice(const SliceSource& src, const SliceGroup<T>& values,
     if constexpr (std::is_same_v<T, std::uint16_t>) {
       const float* visible = src.visibility.label_key.data();
       for (int i = lo; i <= hi; ++i) key[i] = visible[v[i]];
-    } else {
+    } else if (t == 0.f) {
       for (int i = lo; i <= hi; ++i) key[i] = binCoordinate(cv, v[i]);
+    } else {
+      const T* w = next_rows.row(j);
+      for (int i = lo; i <= hi; ++i) key[i] = binCoordinate(cv, v[i] + t * (w[i] - v[i]));
     }
   }
   scratch.occupied.resize(n_i);
@@ -408,8 +417,18 @@ void encodeSlice(const SliceSource& src, const SliceGroup<T>& values,
       else
         return static_cast<const float*>(scratch.keys.data() + static_cast<std::size_t>(j) * n_i);
     }();
-    for (int g = s.segment_offsets[j]; g < s.segment_offsets[j + 1]; ++g)
-      fillRowRecords(src, field, bins, k, j, s.segments[g], s.records + s.segments[g].offset);
+    for (int g = s.segment_offsets[j]; g < s.segment_offsets[j + 1]; ++g) {
+      const RowSegment& segment = s.segments[g];
+      VoxelRecord* out = s.records + segment.offset;
+      fillRowRecords(src, field, bins, k, j, segment, out);
+      if (t == 0.f) continue;
+      // Between voxel slices: the gradient interpolated as the value was (the bin is the key's).
+      scratch.next_records.resize(segment.count);
+      fillRowRecords(src, field, bins, k + 1, j, segment, scratch.next_records.data());
+      for (int n = 0; n < segment.count; ++n)
+        for (int a = 0; a < 3; ++a)
+          out[n].gradient[a] += t * (scratch.next_records[n].gradient[a] - out[n].gradient[a]);
+    }
   }
 }
 
@@ -435,14 +454,22 @@ bool cellOccupied(const ClassifiedVolume& cv, std::span<const int> nonzero_prefi
   return binRangeVisible(cv, nonzero_prefix, bmin, bmax);
 }
 
-AxisEncoding::AxisEncoding(const ClassifiedVolume& cv, int axis)
-    : axis_(axis), axis_i_((axis + 1) % 3), axis_j_((axis + 2) % 3) {
+AxisEncoding::AxisEncoding(const ClassifiedVolume& cv, int axis, int slice_samples)
+    : axis_(axis), axis_i_((axis + 1) % 3), axis_j_((axis + 2) % 3), m_(slice_samples) {
   // Keep x fastest inside a row where possible: for z slices rows run along x, for y slices
   // along x too (rows are then contiguous in memory); x slices run along y.
   if (axis == 1) std::swap(axis_i_, axis_j_);
   n_i_ = cv.dims[axis_i_];
   n_j_ = cv.dims[axis_j_];
-  n_k_ = cv.dims[axis_];
+  const int voxel_slices = cv.dims[axis_];
+  if (m_ < 1 || m_ > RleVolume::kMaxSliceSamples)
+    throw Error(fmt::format("shearwarp: {} slice samples per voxel; 1 to {} are supported", m_,
+                            RleVolume::kMaxSliceSamples));
+  if (m_ > 1 && cv.labels)
+    throw Error(fmt::format("shearwarp: a label map has no values between its voxel slices, so it "
+                            "takes one sample per slice (slice_samples 1, not {})",
+                            m_));
+  n_k_ = (voxel_slices - 1) * m_ + 1;
   if (n_i_ < 2 || n_j_ < 2)
     throw Error(fmt::format("shearwarp: a {}×{}×{} volume is too thin to shear (at least 2 "
                             "voxels along each axis)",
@@ -454,30 +481,40 @@ AxisEncoding::AxisEncoding(const ClassifiedVolume& cv, int axis)
                             n_i_, n_j_, cv.dims[0], cv.dims[1], cv.dims[2]));
   const std::size_t stride[3] = {1, static_cast<std::size_t>(cv.dims[0]),
                                  static_cast<std::size_t>(cv.dims[0]) * cv.dims[1]};
-  const SliceLayout layout{n_i_, n_j_, n_k_, stride[axis_i_], stride[axis_j_], stride[axis_]};
+  const SliceLayout layout{n_i_, n_j_, voxel_slices, stride[axis_i_], stride[axis_j_],
+                           stride[axis_]};
   const Visibility visibility(cv);
   const SliceSource source{cv, layout, axis_, axis_i_, axis_j_, visibility};
   // Gathered slices go in groups of 64: a few cache lines of floats along the axis for each
   // voxel of a slice, read once for the group.
   const int group = layout.stride_i == 1 ? 1 : 64;
-  const int groups = (n_k_ + group - 1) / group;
+  const int groups = (voxel_slices + group - 1) / group;
   slices_.resize(n_k_);
   const bool parallel =
       static_cast<std::int64_t>(n_i_) * n_j_ * n_k_ >= kParallelVoxels;
+  // Voxel slice k's own slice and, short of the last, the m − 1 between it and k + 1.
+  const auto encodeVoxelSlice = [&](const auto& values, const SliceGroup<float>& field, int k,
+                                    EncoderScratch& scratch) {
+    const int between = k + 1 < voxel_slices ? m_ : 1;
+    for (int r = 0; r < between; ++r)
+      encodeSlice(source, values, field, k, static_cast<float>(r) / static_cast<float>(m_),
+                  scratch, slices_[static_cast<std::size_t>(k) * m_ + r]);
+  };
 #pragma omp parallel if (parallel)
   {
     EncoderScratch scratch;
 #pragma omp for schedule(dynamic)
     for (int g = 0; g < groups; ++g) {
-      const int k0 = g * group, k1 = std::min(k0 + group, n_k_);
+      const int k0 = g * group, k1 = std::min(k0 + group, voxel_slices);
       if (cv.labels) {
         const SliceGroup<std::uint16_t> labels(layout, cv.label.data(), k0, k1,
                                                scratch.label_planes);
         const SliceGroup<float> field(layout, cv.shading_field.data(), k0, k1, scratch.field);
-        for (int k = k0; k < k1; ++k) encodeSlice(source, labels, field, k, scratch, slices_[k]);
+        for (int k = k0; k < k1; ++k) encodeVoxelSlice(labels, field, k, scratch);
       } else {
-        const SliceGroup<float> values(layout, cv.values.data(), k0, k1, scratch.values);
-        for (int k = k0; k < k1; ++k) encodeSlice(source, values, values, k, scratch, slices_[k]);
+        const SliceGroup<float> values(layout, cv.values.data(), k0, k1, scratch.values,
+                                       m_ > 1 ? 2 : 1);
+        for (int k = k0; k < k1; ++k) encodeVoxelSlice(values, values, k, scratch);
       }
     }
 #pragma omp critical(svr_shearwarp_records)
@@ -514,9 +551,14 @@ std::shared_ptr<const RleVolume> RleVolume::of(const ClassifiedVolume& cv) {
                                     [&] { return std::make_shared<const RleVolume>(cv); });
 }
 
-const AxisEncoding& RleVolume::encoding(int axis) const {
-  std::call_once(once_[axis], [&] { axes_[axis] = std::make_unique<AxisEncoding>(cv_, axis); });
-  return *axes_[axis];
+const AxisEncoding& RleVolume::encoding(int axis, int slice_samples) const {
+  if (slice_samples < 1 || slice_samples > kMaxSliceSamples)
+    throw Error(fmt::format("shearwarp: {} slice samples per voxel; 1 to {} are supported",
+                            slice_samples, kMaxSliceSamples));
+  const int n = axis * kMaxSliceSamples + slice_samples - 1;
+  std::call_once(once_[n],
+                 [&] { axes_[n] = std::make_unique<AxisEncoding>(cv_, axis, slice_samples); });
+  return *axes_[n];
 }
 
 void RleVolume::buildAll() const {

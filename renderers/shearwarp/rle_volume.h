@@ -12,6 +12,14 @@
 // transparent runs are the gaps between them and are never visited), and per voxel row the
 // voxel records (bin coordinate or label, and the precomputed world-space gradient of the shading field)
 // of the segments of voxels that non-transparent cells touch. Transparent space costs nothing.
+//
+// Samples between slices: an encoding may hold m slices per voxel along c (`slice_samples`),
+// slice k·m + r lying at voxel position k + r/m. Its records are the two voxel slices' records
+// interpolated linearly along c (value, hence bin coordinate, and gradient), so a bilinear
+// sample inside it is the trilinear sample of the volume at that point: refining along the ray
+// converges to the raycaster's sampling. The cells of such a slice are tested on its own
+// interpolated keys, within the occupied blocks of voxel slice k (whose +1 border holds k + 1).
+// Label maps cannot be interpolated, so they take m = 1 only.
 
 #include <array>
 #include <cstdint>
@@ -65,12 +73,14 @@ struct SliceEncoding {
 // The encoding for one principal axis.
 class AxisEncoding {
  public:
-  AxisEncoding(const ClassifiedVolume& cv, int axis);
+  // slice_samples: m slices per voxel spacing along the axis (1: the voxel slices).
+  AxisEncoding(const ClassifiedVolume& cv, int axis, int slice_samples = 1);
 
   int axis() const { return axis_; }
   int axisI() const { return axis_i_; }
   int axisJ() const { return axis_j_; }
-  int slices() const { return n_k_; }
+  int slices() const { return n_k_; }     // (voxels along the axis − 1) · m + 1
+  int sliceSamples() const { return m_; }
   int rowLength() const { return n_i_; }  // voxels along axis_i
   int rowCount() const { return n_j_; }   // voxel rows along axis_j
 
@@ -95,28 +105,30 @@ class AxisEncoding {
   std::size_t storedVoxels() const;
 
  private:
-  int axis_, axis_i_, axis_j_, n_i_, n_j_, n_k_;
+  int axis_, axis_i_, axis_j_, n_i_, n_j_, n_k_, m_;
   BlockArena records_;  // every slice's voxel records
   std::vector<SliceEncoding> slices_;
 };
 
-// The three encodings of one classified volume, each built on first use (thread-safe), so a
-// render pays only for the axis it needs and later views reuse it. Holds a reference: the
-// classified volume must outlive it.
+// The encodings of one classified volume, per axis and slice samples, each built on first use
+// (thread-safe), so a render pays only for the one it needs and later views reuse it. Holds a
+// reference: the classified volume must outlive it.
 class RleVolume {
  public:
+  static constexpr int kMaxSliceSamples = 8;
   explicit RleVolume(const ClassifiedVolume& cv);
   // The classification's instance (cached on it), so a series of views pays for each axis's
   // encoding once.
   static std::shared_ptr<const RleVolume> of(const ClassifiedVolume& cv);
   const ClassifiedVolume& classified() const { return cv_; }
-  const AxisEncoding& encoding(int axis) const;
-  void buildAll() const;
+  // slice_samples 1 … kMaxSliceSamples.
+  const AxisEncoding& encoding(int axis, int slice_samples = 1) const;
+  void buildAll() const;  // the three axes' voxel-slice encodings
 
  private:
   const ClassifiedVolume& cv_;
-  mutable std::array<std::once_flag, 3> once_;
-  mutable std::array<std::unique_ptr<AxisEncoding>, 3> axes_;
+  mutable std::array<std::once_flag, 3 * kMaxSliceSamples> once_;
+  mutable std::array<std::unique_ptr<AxisEncoding>, 3 * kMaxSliceSamples> axes_;
 };
 
 // Whether the cell with lower corner (x, y, z) in the plane of axes a and b (the other axis

@@ -66,4 +66,16 @@ ShearWarpFactorization factorizeView(const Camera& camera, int width, int height
   return f;
 }
 
+void sampleBetweenSlices(ShearWarpFactorization& view, int m) {
+  view.slice_spacing_world = view.slice_spacing_world * view.slice_samples / m;
+  view.slice_samples = m;
+}
+
+int sliceSamplesForStep(const ShearWarpFactorization& view, double step_world, int max) {
+  const double voxel_slice = view.slice_spacing_world * view.slice_samples;
+  // A relative slack, so that a spacing equal to the step (up to rounding) takes no extra sample.
+  const double needed = std::ceil(voxel_slice / step_world * (1.0 - 1e-9));
+  return static_cast<int>(std::clamp(needed, 1.0, static_cast<double>(max)));
+}
+
 }  // namespace svr::shearwarp

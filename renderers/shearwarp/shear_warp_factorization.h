@@ -27,8 +27,11 @@ struct ShearWarpFactorization {
   double offset_i = 0.0, offset_j = 0.0;  // a of intermediate pixel 0
   int scale = 1;                          // intermediate pixels per voxel
   int width = 0, height = 0;              // intermediate image (along i, j)
-  // World length of the ray between two slices, √(1 + s_i² + s_j²) in isotropic voxels: the
-  // sample spacing that opacity and transmission are corrected for.
+  // Samples per voxel slice along c (sampleBetweenSlices): slice k of an encoding with m slice
+  // samples lies at voxel position k / m along c.
+  int slice_samples = 1;
+  // World length of the ray between two samples, √(1 + s_i² + s_j²) in isotropic voxels over
+  // slice_samples: the sample spacing that opacity and transmission are corrected for.
   double slice_spacing_world = 1.0;
   // Final-image pixel (px, py) (continuous, centres at +0.5) → intermediate (u, v):
   // u = warp_u[0] + warp_u[1]·px + warp_u[2]·py, likewise v.
@@ -39,5 +42,13 @@ struct ShearWarpFactorization {
 // axis_i/axis_j follow AxisEncoding's choice for the principal axis.
 ShearWarpFactorization factorizeView(const Camera& camera, int width, int height,
                                      const Dims& dims, const glm::dvec3& spacing, int scale);
+
+// The view sampled m times per voxel slice along the principal axis: the samples between voxel
+// slices are trilinear (rle_volume.h), a world step of slice_spacing_world / m.
+void sampleBetweenSlices(ShearWarpFactorization& view, int m);
+
+// The fewest samples per voxel slice (1 … max) that put the ray's samples no farther apart
+// than step_world, the render step the raycaster takes.
+int sliceSamplesForStep(const ShearWarpFactorization& view, double step_world, int max);
 
 }  // namespace svr::shearwarp

@@ -184,7 +184,11 @@ SVR_SHEARWARP_INLINE void forEachSample(const CompositeJob& job, int v, int slic
   const double inv_scale = 1.0 / f.scale;
   // Positions are computed in the whole grid, as a whole render computes them, then moved to
   // the brick's stored voxels (exact: integer offsets of doubles a few thousand voxels wide).
-  const int whole_slice = slice + job.origin[f.axis];
+  // The slice's place along the axis in whole-grid voxels (slice_samples to a voxel slice:
+  // exact for one, as the division by 1 is).
+  const int m = f.slice_samples;
+  const double whole_slice =
+      static_cast<double>(slice + job.origin[f.axis] * m) / static_cast<double>(m);
   const double qj_whole = v * inv_scale + f.offset_j + f.shear_j * whole_slice;
   if (!(qj_whole >= job.lo[f.axis_j] && qj_whole < job.hi[f.axis_j])) return;
   const double qj = qj_whole - job.origin[f.axis_j];
