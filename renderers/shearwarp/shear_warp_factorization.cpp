@@ -66,6 +66,19 @@ ShearWarpFactorization factorizeView(const Camera& camera, int width, int height
   return f;
 }
 
+int supersampleForScreen(const ShearWarpFactorization& view, int max) {
+  // J = [warp_u[1] warp_u[2]; warp_v[1] warp_v[2]], intermediate pixels per final pixel; the
+  // eigenvalues of JᵀJ are its singular values squared.
+  const double a = view.warp_u[1] * view.warp_u[1] + view.warp_v[1] * view.warp_v[1];
+  const double c = view.warp_u[2] * view.warp_u[2] + view.warp_v[2] * view.warp_v[2];
+  const double b = view.warp_u[1] * view.warp_u[2] + view.warp_v[1] * view.warp_v[2];
+  const double smallest = std::sqrt(std::max(0.0, 0.5 * (a + c - std::hypot(a - c, 2.0 * b))));
+  const double pixels_per_voxel = view.scale / std::max(smallest, 1e-12);
+  // A relative slack, so that exactly one pixel a voxel (up to rounding) stays at 1.
+  return static_cast<int>(std::clamp(std::ceil(pixels_per_voxel * (1.0 - 1e-9)), 1.0,
+                                     static_cast<double>(max)));
+}
+
 void sampleBetweenSlices(ShearWarpFactorization& view, int m) {
   view.slice_spacing_world = view.slice_spacing_world * view.slice_samples / m;
   view.slice_samples = m;

@@ -43,6 +43,12 @@ struct ShearWarpFactorization {
 ShearWarpFactorization factorizeView(const Camera& camera, int width, int height,
                                      const Dims& dims, const glm::dvec3& spacing, int scale);
 
+// The intermediate pixels per voxel (1 … max) that keep the intermediate image at least as
+// fine as the final one in every direction: the final pixels a voxel spans where the warp
+// magnifies most (1 / the smaller singular value of its Jacobian at `view`'s scale), rounded
+// up. `view`: factorised at scale 1.
+int supersampleForScreen(const ShearWarpFactorization& view, int max);
+
 // The view sampled m times per voxel slice along the principal axis: the samples between voxel
 // slices are trilinear (rle_volume.h), a world step of slice_spacing_world / m.
 void sampleBetweenSlices(ShearWarpFactorization& view, int m);

@@ -19,6 +19,8 @@
 namespace svr {
 namespace {
 
+constexpr int kMaxSupersample = 4;
+
 // The kernel for this CPU, chosen once per render: AVX2 where the CPU has it (and FMA) and the
 // portable path is not forced (as the raycaster chooses); the portable compilation otherwise.
 shearwarp::BandFn pickKernel(const shearwarp::KernelKey& key, const KernelForce& force) {
@@ -41,9 +43,10 @@ const BackendInfo& ShearWarpRenderer::info() const {
       "shearwarp", "Lacroute & Levoy shear-warp over run-length-encoded classified slices",
       {.perspective = false, .spectral_transmittance = true,
        .max_channels = shearwarp::kMaxChannels, .bricks = true},
-      {OptionSpec::integer("supersample", 1, 1, 4,
-                           "intermediate pixels per voxel along each slice axis: less blur "
-                           "under zoom, for time"),
+      {OptionSpec::integer("supersample", 0, 0, kMaxSupersample,
+                           "intermediate pixels per voxel along each slice axis: 0 (auto) "
+                           "follows the screen, as many as the final pixels a voxel spans (no "
+                           "blur under zoom, for time); 1 is volume resolution"),
        OptionSpec::integer("slice_samples", 0, 0, shearwarp::RleVolume::kMaxSliceSamples,
                            "samples per voxel slice along the ray, trilinear between slices: "
                            "0 (auto) takes enough that they are no farther apart than "
@@ -62,6 +65,21 @@ namespace {
 
 // The grid the view is factorised for: the whole volume's, for a brick.
 const Dims& viewDims(const ClassifiedVolume& cv) { return cv.brick ? cv.brick->whole : cv.dims; }
+
+// The view's factorisation at the option's supersample, or for 0 (auto) at the screen's.
+shearwarp::ShearWarpFactorization factorizeRequest(const RenderRequest& req,
+                                                   const BackendOptions& options) {
+  const ClassifiedVolume& cv = req.volume;
+  const auto at = [&](int scale) {
+    return shearwarp::factorizeView(req.camera, req.width, req.height, viewDims(cv), cv.spacing,
+                                    scale);
+  };
+  const int asked = options.integer("supersample");
+  if (asked > 0) return at(asked);
+  const shearwarp::ShearWarpFactorization volume_resolution = at(1);
+  const int scale = shearwarp::supersampleForScreen(volume_resolution, kMaxSupersample);
+  return scale == 1 ? volume_resolution : at(scale);
+}
 
 // The samples per voxel slice: the option's, or for 0 (auto) enough for the render step.
 // Label maps and pre-classified records cannot be interpolated between slices.
@@ -116,9 +134,7 @@ LightIndependentImage ShearWarpRenderer::finishBricks(LightIndependentImage comp
   const ClassifiedVolume& cv = req.volume;
   const BackendOptions options = readBackendOptions(info().options, req.options, info().name,
                                                     req.options_source);
-  const shearwarp::ShearWarpFactorization view =
-      shearwarp::factorizeView(req.camera, req.width, req.height, viewDims(cv), cv.spacing,
-                               options.integer("supersample"));
+  const shearwarp::ShearWarpFactorization view = factorizeRequest(req, options);
   shearwarp::IntermediateImage intermediate(view.width, view.height, cv.k, cv.t_channels);
   if (composited.width() != view.width || composited.height() != view.height)
     throw Error(fmt::format("shearwarp: composited bricks are {}×{}, the view's intermediate "
@@ -147,8 +163,7 @@ LightIndependentImage ShearWarpRenderer::warped(const shearwarp::IntermediateIma
 std::uint64_t ShearWarpRenderer::workingBytes(const RenderRequest& req,
                                               const BackendOptions& options) const {
   const ClassifiedVolume& cv = req.volume;
-  const shearwarp::ShearWarpFactorization view = shearwarp::factorizeView(
-      req.camera, req.width, req.height, viewDims(cv), cv.spacing, options.integer("supersample"));
+  const shearwarp::ShearWarpFactorization view = factorizeRequest(req, options);
   return std::uint64_t(view.width) * std::uint64_t(view.height) *
          std::uint64_t(shearwarp::IntermediateImage::strideFor(cv.k, cv.t_channels)) *
          sizeof(float);
@@ -159,8 +174,7 @@ LightIndependentImage ShearWarpRenderer::renderImpl(const RenderRequest& req,
                                                     ProgressCounter& progress) const {
   const ClassifiedVolume& cv = req.volume;
   const std::shared_ptr<const shearwarp::RleVolume> encoded = shearwarp::RleVolume::of(cv);
-  shearwarp::ShearWarpFactorization view = shearwarp::factorizeView(
-      req.camera, req.width, req.height, viewDims(cv), cv.spacing, options.integer("supersample"));
+  shearwarp::ShearWarpFactorization view = factorizeRequest(req, options);
   shearwarp::sampleBetweenSlices(view, sliceSamples(cv, view, options));
   const shearwarp::AxisEncoding& encoding = encoded->encoding(view.axis, view.slice_samples);
 

@@ -705,8 +705,28 @@ TEST(ShearWarp, SamplesBetweenSlicesFollowTheRaycastersStep) {
   EXPECT_LT(fine, automatic);
 }
 
+// `auto` supersampling follows the screen: as many intermediate pixels a voxel as the final
+// pixels a voxel spans, rounded up (an axis view, where the warp is a scaling: N pixels over a
+// height of h unit voxels is N / h pixels a voxel), at most 4.
+TEST(ShearWarp, AutoSupersampleFollowsThePixelsAVoxelSpans) {
+  const Dims dims{64, 64, 64};
+  for (const auto& [pixels_per_voxel, expected] :
+       {std::pair{0.5, 1}, std::pair{1.0, 1}, std::pair{1.25, 2}, std::pair{2.0, 2},
+        std::pair{2.5, 3}, std::pair{3.7, 4}, std::pair{9.0, 4}}) {
+    const int n = 128;
+    const Camera camera = Camera::orbit(0.0, 0.0, 400.0, 0.0, n / pixels_per_voxel);
+    const auto view = shearwarp::factorizeView(camera, n, n, dims, glm::dvec3(1.0), 1);
+    EXPECT_EQ(shearwarp::supersampleForScreen(view, 4), expected) << pixels_per_voxel;
+  }
+  // Anisotropic voxels: the longest side on the screen sets it (a voxel 2.5 units tall along z,
+  // the screen's vertical, spans 2.5 pixels at a pixel a unit).
+  const Camera camera = Camera::orbit(0.0, 0.0, 400.0, 0.0, 128.0);
+  const auto view = shearwarp::factorizeView(camera, 128, 128, dims, glm::dvec3(1.0, 1.0, 2.5), 1);
+  EXPECT_EQ(shearwarp::supersampleForScreen(view, 4), 3);
+}
+
 // Supersampling the intermediate image reduces the blur of the warp when zoomed in: closer to
-// the raycaster.
+// the raycaster; `auto` (the default) takes it there by itself.
 TEST(ShearWarp, SupersamplingReducesZoomBlur) {
   Scene scene = loadScene(test::rendererDataDir() + "/scenes/engine.json", test::rendererLibrary());
   scene.camera = Camera::orbit(30.0, 20.0, 400.0, 0.0, scene.camera.ortho_height / 3);
@@ -714,13 +734,18 @@ TEST(ShearWarp, SupersamplingReducesZoomBlur) {
   const auto model = makeRgbModel(test::rendererObserver());
   const ClassifiedVolume cv = classifyScene(scene, *model);
   const auto rc = test::render(RaycastRenderer(), scene, cv);
+  scene.renderer_options = {{"shearwarp", {{"supersample", 1}}}};
   const auto plain = test::render(ShearWarpRenderer(), scene, cv);
   scene.renderer_options = {{"shearwarp", {{"supersample", 3}}}};
   const auto fine = test::render(ShearWarpRenderer(), scene, cv);
+  scene.renderer_options = nlohmann::json::object();
+  const auto automatic = test::render(ShearWarpRenderer(), scene, cv);
   const double e1 = relitDifference(plain, rc, *model, "D65").stats.mean;
   const double e3 = relitDifference(fine, rc, *model, "D65").stats.mean;
-  std::printf("zoom 3×: ΔE2000 mean supersample 1: %.3f, 3: %.3f\n", e1, e3);
+  const double ea = relitDifference(automatic, rc, *model, "D65").stats.mean;
+  std::printf("zoom 3×: ΔE2000 mean supersample 1: %.3f, 3: %.3f, auto: %.3f\n", e1, e3, ea);
   EXPECT_LT(e3, e1);
+  EXPECT_LT(ea, e1);
 }
 
 }  // namespace
