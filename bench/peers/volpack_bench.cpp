@@ -10,7 +10,8 @@
 // changes. VolPack is single-threaded: run this with OMP_NUM_THREADS=1 for equal threads
 // (bench/peers/run does, and adds our rows at 2 threads).
 //
-// What matches: one sample per slice (shearwarp.slice_samples=1), the volume (our loader), the opacity per unit length at every 8-bit value (from
+// What matches: one sample per slice at volume resolution (shearwarp.slice_samples=1,
+// supersample=1), the volume (our loader), the opacity per unit length at every 8-bit value (from
 // our classification: peer_scene.h), the early-termination threshold (ray opacity 0.99 = T <
 // 0.01), the camera (orthographic, same framing), the light direction, two-sided lighting and
 // the Phong model: VolPack's lookup shader is given four "materials" — red, green and blue
@@ -237,9 +238,11 @@ void shearwarpFrame(benchmark::State& state, const std::string& model, int size,
   shearwarp::RleVolume::of(cv)->buildAll();  // cached on the classification, as in a viewer
   const ShearWarpRenderer renderer;
   RenderRequest request = engineRequest(cv, azimuth, size);
-  // One sample per slice, as VolPack takes (our default adds samples between slices where the
-  // render step asks for them: a different, finer sampling).
-  request.options["shearwarp"] = {{"classification", classification}, {"slice_samples", 1}};
+  // One sample per slice and an intermediate image at volume resolution, as VolPack's (our
+  // defaults add samples between slices where the render step asks for them, and intermediate
+  // pixels where the screen does: a different, finer sampling).
+  request.options["shearwarp"] = {
+      {"classification", classification}, {"slice_samples", 1}, {"supersample", 1}};
   const LightIndependentImage first = renderer.render(request);
   if (!imagesDir.empty() && model == "rgb" && classification == "post") {
     std::vector<unsigned char> rgb(static_cast<std::size_t>(size) * size * 3);
