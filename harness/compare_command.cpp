@@ -67,25 +67,40 @@ void renderReportCharts(const std::string& out_dir) {
 
 namespace {
 
+// One --variant: BACKEND.KEY=VALUE, or several for one backend joined by commas
+// ("shearwarp.slice_samples=4,shearwarp.supersample=2"), as {backend: {key: value, …}}.
+std::pair<std::string, nlohmann::json> parseVariant(const std::string& text) {
+  std::string backend;
+  nlohmann::json options = nlohmann::json::object();
+  std::size_t begin = 0;
+  while (begin <= text.size()) {
+    const std::size_t end = std::min(text.find(',', begin), text.size());
+    const std::string one = text.substr(begin, end - begin);
+    nlohmann::json checked = nlohmann::json::object();
+    applyOptionAssignment(checked, one, "--variant");  // unknown backends or keys fail here
+    const OptionAssignment a = parseOptionAssignment(one, "--variant");
+    if (!backend.empty() && a.backend != backend)
+      throw Error(fmt::format("--variant '{}': '{}' is for backend '{}', its first option for "
+                              "'{}'; a variant sets the options of one backend",
+                              text, one, a.backend, backend));
+    backend = a.backend;
+    options[backend][a.key] = a.value;
+    begin = end + 1;
+  }
+  return {backend, options};
+}
+
 // Every backend × model, and every --variant of a backend beside its plain run.
 std::vector<RunSpec> runSpecs(const CompareOptions& o, const std::vector<std::string>& renderers,
                               const std::vector<std::string>& models) {
-  std::vector<OptionAssignment> variants;
-  for (const auto& v : o.variants) {
-    nlohmann::json checked = nlohmann::json::object();
-    applyOptionAssignment(checked, v, "--variant");  // unknown backends or keys fail here
-    variants.push_back(parseOptionAssignment(v, "--variant"));
-  }
+  std::vector<std::pair<std::string, nlohmann::json>> variants;
+  for (const auto& v : o.variants) variants.push_back(parseVariant(v));
   std::vector<RunSpec> specs;
   for (const auto& r : renderers)
     for (const auto& m : models) {
       specs.push_back({r, m, nlohmann::json::object()});
-      for (const auto& v : variants) {
-        if (v.backend != r) continue;
-        nlohmann::json options;
-        options[r][v.key] = v.value;
-        specs.push_back({r, m, options});
-      }
+      for (const auto& [backend, options] : variants)
+        if (backend == r) specs.push_back({r, m, options});
     }
   return specs;
 }
@@ -303,7 +318,8 @@ CommandEntry compare() {
                            "models (default rgb,factor:3,factor:4,factor:6,factor:8,spectral:31)")
                 ->delimiter(',');
             sub.add_option("--variant", o->variants,
-                           "extra run with a backend option, BACKEND.KEY=VALUE (repeatable)");
+                           "extra run with backend options, BACKEND.KEY=VALUE[,BACKEND.KEY=VALUE…] "
+                           "for one backend (repeatable)");
             sub.add_option("--out", o->out_dir, "report folder")->required();
             auto* width = sub.add_option("--width", o->width, "image width (default: the scene's)");
             auto* height =

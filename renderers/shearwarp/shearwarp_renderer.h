@@ -12,9 +12,11 @@
 // The run-length encoding is built once per classification and principal axis, and cached on
 // the classification (RleVolume::of): the first view along an axis pays for it, later views not.
 //
-// Known failures, measured in the tests and the issue note rather than hidden: resampling is 2D
-// only (bilinear in a slice, none between slices), the sample spacing grows towards 45°, the
-// principal axis switches (and the image pops) at 45°, and zooming in blurs.
+// Sampling follows the render (docs/backends.md): by default, slices between the voxel slices
+// (trilinear) keep the ray's samples no farther apart than render.step, and the intermediate
+// image is as fine as the screen. Known failures, measured in the tests and docs rather than
+// hidden: label maps take one sample a slice, the principal axis switches (and the image pops)
+// at 45°, and perspective cameras are refused.
 
 #include "renderers/render/renderer.h"
 #include "renderers/memory/reuse_pool.h"

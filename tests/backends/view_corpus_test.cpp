@@ -3,12 +3,16 @@
 // factor:6, what holds today and must keep holding: every backend renders every view it takes
 // (no failure; shear-warp skips perspective cameras and only those), every figure is finite, and
 // gl ray casting agrees with the CPU raycaster within 0.1 mean ΔE2000 (issue 49, goal 4) under
-// every light. svr_backend_bench measures the whole corpus and prints the shares; shear-warp's
-// and the splats' targets are not met yet (docs/backends.md), so they are not asserted here.
+// every light; and shear-warp's median over the views it takes is within goal 4's 0.8 for both
+// models. svr_backend_bench measures the whole corpus and prints the shares; shear-warp's p95
+// target (2.0: 2.01 and 2.06 over 200 views) and the splats' are not met yet
+// (docs/backends.md), so they are not asserted here.
 #include <fmt/format.h>
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <vector>
 
 #include "bench/backends/backend_agreement.h"
 #include "bench/backends/view_corpus.h"
@@ -54,6 +58,32 @@ TEST_P(ViewCorpusTest, EveryBackendRendersItsViewsAndGlAgreesWithTheRaycaster) {
         if (renderer == "gl") EXPECT_LE(a.vs_raycast, 0.1);
       }
     }
+  }
+}
+
+// Shear-warp at its defaults (samples between slices for the render step, an intermediate image
+// as fine as the screen) against the raycaster: the median over the first thirty views' orthographic
+// ones (measured 0.41 for rgb and 0.40 for factor:6, 23 views; 1.24 with one sample a slice at
+// volume resolution, rgb).
+TEST(ViewCorpus, ShearWarpsMedianIsWithinItsTarget) {
+  const Corpus& c = corpus();
+  for (const std::string model : {"rgb", "factor:6"}) {
+    std::vector<double> figures;
+    for (int i = 0; i < 30; ++i) {
+      const Scene scene = c.views.scene(i);
+      if (!scene.camera.orthographic()) continue;
+      const BackendFrame raycast =
+          renderBackendFrame(c.spectra, scene, referenceRendererName(), model);
+      const Agreement a = agreementWithRaycast(c.spectra, scene, raycast, "shearwarp", model);
+      ASSERT_EQ(a.status, Agreement::Status::kRendered) << c.views.name(i) << ": " << a.note;
+      figures.push_back(a.vs_raycast);
+    }
+    ASSERT_GE(figures.size(), 15u);
+    std::sort(figures.begin(), figures.end());
+    const double median = figures[(figures.size() - 1) / 2];  // nearest rank, the lower middle
+    std::printf("shearwarp %s: median %.3f over %zu views\n", model.c_str(), median,
+                figures.size());
+    EXPECT_LE(median, 0.8) << model;
   }
 }
 
