@@ -125,7 +125,8 @@ nlohmann::json runReport(const RunResult& run, const Scene& scene,
   const std::string run_slug = slug(run.spec.label());
   fs::create_directories(fs::path(out_dir) / "images" / run_slug);
   fs::create_directories(fs::path(out_dir) / "maps" / run_slug);
-  const auto tolerances = tolerancesFor(run.spec.renderer, scene.tolerances);
+  const auto tolerances = tolerancesFor(run.spec.renderer, scene.tolerances,
+                                       runBackendOptions(run.spec, scene.renderer_options));
   double de_tolerance = 0.0;
   for (const auto& t : tolerances)
     if (t.metric == "de_mean") de_tolerance = t.limit;
@@ -220,7 +221,7 @@ CompareSummary runComparison(Scene scene, const CompareOptions& o) {
     progress.advance(spec.label());
   }
   for (const auto& run : summary.runs) {
-    const auto misses = checkTolerances(run, scene.tolerances);
+    const auto misses = checkTolerances(run, scene.tolerances, scene.renderer_options);
     summary.exceedances.insert(summary.exceedances.end(), misses.begin(), misses.end());
   }
 

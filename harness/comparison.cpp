@@ -209,19 +209,53 @@ RunResult ComparisonSession::run(const RunSpec& spec) {
   return result;
 }
 
-std::vector<Tolerance> tolerancesFor(const std::string& renderer, const nlohmann::json& scene) {
-  // Defaults. Against the spectral reference the colour model's own error counts too (rgb and
+namespace {
+
+// A backend algorithm's default tolerances against the raycaster with the same model (mean,
+// p95 of ΔE2000 under each light), from issue 49's view corpus at each backend's defaults
+// (bench/backends/svr_backend_bench, 200 views, seed 40; docs/backends.md, "Tolerances"):
+//   shear-warp  the corpus's per-view figures reach mean 2.8 / p95 9.0 but for one view (a
+//               500-voxel CT minified 2.5:1, where both alias: 5.2 / 20.9) → 3 / 12;
+//   splat       99 % of its per-view figures are within 7.8 / 20.1 (the worst: 8.4 / 27.5,
+//               and one factor:6 view at mean 16.3; minified and zoomed views of sharp
+//               transfer functions, where a Gaussian and a trilinear reconstruction differ
+//               most) → 8 / 22;
+//   gl raycast  the raycaster's algorithm: at most 0.07 / 0.21 → 0.1 / 0.3;
+//   gl splat    the splat algorithm classified at the voxels: the splats' bound.
+// Pre-classified variants stay within these (shear-warp 2.3 on the frog; the splats classified
+// at the voxels 2.4 / 8.3 on the engine).
+std::pair<double, double> agreementDefaults(const std::string& renderer,
+                                            const nlohmann::json& backend_options) {
+  if (renderer == "gl") {
+    const bool splats = backend_options.is_object() && backend_options.contains("mode") &&
+                        backend_options["mode"] == "splat";
+    if (!splats) return {0.1, 0.3};
+    return agreementDefaults("splat", {});
+  }
+  if (renderer == "splat") return {8.0, 22.0};
+  return {3.0, 12.0};
+}
+
+}  // namespace
+
+nlohmann::json runBackendOptions(const RunSpec& spec, const nlohmann::json& scene_options) {
+  nlohmann::json out = nlohmann::json::object();
+  for (const nlohmann::json* from : {&scene_options, &spec.options})
+    if (from->is_object() && from->contains(spec.renderer) && (*from)[spec.renderer].is_object())
+      for (const auto& [key, value] : (*from)[spec.renderer].items()) out[key] = value;
+  return out;
+}
+
+std::vector<Tolerance> tolerancesFor(const std::string& renderer, const nlohmann::json& scene,
+                                     const nlohmann::json& backend_options) {
+  // Against the spectral reference the colour model's own error counts too (rgb and
   // factor:3–4 under spiky lights reach mean 6–12); against the raycaster with the same model
-  // only the algorithm's error counts, and the raycaster is that reference itself. The methods
-  // that classify at the voxels set the bound: pre-classified splats measured mean 2.4 / p95 8.3
-  // on the engine and 1.8 / 5.7 on the frog (512², azimuth 30°), and gl's splats, which still
-  // classify at the voxels, stay within ΔE2000 0.15 of those (issue 6; engine 2.35 / p95 8.1 at
-  // 96²); pre-classified shear-warp reaches 2.3 on the frog. The CPU splats' post-classified
-  // sheets (issue 17) measure 1.0–1.95 on the default and the zoomed CT scenes.
+  // only the algorithm's error counts, and the raycaster is that reference itself.
   std::map<std::string, double> limits{{"de_mean", 15.0}, {"de_p95", 40.0}};
   if (renderer != Reference().renderer) {
-    limits["de_vs_raycast_mean"] = 3.0;
-    limits["de_vs_raycast_p95"] = 12.0;
+    const auto [mean, p95] = agreementDefaults(renderer, backend_options);
+    limits["de_vs_raycast_mean"] = mean;
+    limits["de_vs_raycast_p95"] = p95;
   }
   auto apply = [&](const nlohmann::json& table) {
     if (!table.is_object()) return;
@@ -240,9 +274,11 @@ std::string Exceedance::str() const {
                      metric, value, tolerance);
 }
 
-std::vector<Exceedance> checkTolerances(const RunResult& run, const nlohmann::json& scene) {
+std::vector<Exceedance> checkTolerances(const RunResult& run, const nlohmann::json& scene,
+                                        const nlohmann::json& scene_options) {
   std::vector<Exceedance> out;
-  for (const auto& tol : tolerancesFor(run.spec.renderer, scene))
+  for (const auto& tol :
+       tolerancesFor(run.spec.renderer, scene, runBackendOptions(run.spec, scene_options)))
     for (const auto& l : run.lights) {
       double value = 0.0;
       if (tol.metric == "de_mean") value = l.vs_reference.mean;

@@ -138,19 +138,26 @@ class ComparisonSession {
   std::map<std::string, Rendered> exact_by_backend_;  // runs' exact twins, by backend and options
 };
 
-// Tolerances: one table of per-backend defaults, overridden by the scene's "tolerances"
-// ({"de_mean": 8, "shearwarp": {"de_vs_raycast_mean": 3}}).
+// Tolerances: one table of defaults per backend algorithm (gl's two modes are two algorithms),
+// overridden by the scene's "tolerances" ({"de_mean": 8, "shearwarp": {"de_vs_raycast_mean":
+// 3}}; a backend's key covers all its modes). backend_options: the run's options for this
+// backend, the scene's render.options with the run's over them ({"mode": "splat"}).
 struct Tolerance {
   std::string metric;  // "de_mean", "de_p95", "de_vs_raycast_mean", "de_vs_raycast_p95"
   double limit;
 };
-std::vector<Tolerance> tolerancesFor(const std::string& renderer, const nlohmann::json& scene);
+std::vector<Tolerance> tolerancesFor(const std::string& renderer, const nlohmann::json& scene,
+                                     const nlohmann::json& backend_options = {});
+// The run's options for its backend: scene_options[renderer] (render.options) with the run's
+// own over them.
+nlohmann::json runBackendOptions(const RunSpec& spec, const nlohmann::json& scene_options);
 
 struct Exceedance {
   std::string run, light, metric;
   double value, tolerance;
   std::string str() const;
 };
-std::vector<Exceedance> checkTolerances(const RunResult& run, const nlohmann::json& scene);
+std::vector<Exceedance> checkTolerances(const RunResult& run, const nlohmann::json& scene,
+                                        const nlohmann::json& scene_options = {});
 
 }  // namespace svr

@@ -37,7 +37,11 @@ Agreement agreementWithRaycast(const std::shared_ptr<const SessionSpectra>& spec
   try {
     const BackendFrame frame = renderBackendFrame(spectra, scene, renderer, model, options);
     double mean_limit = INFINITY, p95_limit = INFINITY;
-    for (const auto& t : tolerancesFor(renderer, scene.tolerances)) {
+    nlohmann::json run_options = nlohmann::json::object();
+    for (const auto& o : options) applyOptionAssignment(run_options, o, "--option");
+    const RunSpec spec{renderer, model, run_options};
+    for (const auto& t : tolerancesFor(renderer, scene.tolerances,
+                                       runBackendOptions(spec, scene.renderer_options))) {
       if (t.metric == "de_vs_raycast_mean") mean_limit = t.limit;
       if (t.metric == "de_vs_raycast_p95") p95_limit = t.limit;
     }

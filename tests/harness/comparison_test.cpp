@@ -66,6 +66,23 @@ TEST(Tolerances, DefaultsAndSceneOverrides) {
   EXPECT_EQ(find(tolerancesFor("splat", scene), "de_mean"), 5.0);
   EXPECT_EQ(find(tolerancesFor("splat", scene), "de_vs_raycast_mean"), 4.5);
   EXPECT_EQ(find(tolerancesFor("raycast", scene), "de_mean"), 5.0);
+  // Per algorithm: gl's ray casting is the raycaster's algorithm, its splats the splats'.
+  EXPECT_EQ(find(tolerancesFor("gl", {}), "de_vs_raycast_mean"), 0.1);
+  EXPECT_EQ(find(tolerancesFor("gl", {}, {{"mode", "raycast"}}), "de_vs_raycast_p95"), 0.3);
+  EXPECT_EQ(find(tolerancesFor("gl", {}, {{"mode", "splat"}}), "de_vs_raycast_mean"),
+            find(tolerancesFor("splat", {}), "de_vs_raycast_mean"));
+  EXPECT_EQ(find(tolerancesFor("gl", {}, {{"mode", "splat"}}), "de_vs_raycast_p95"),
+            find(tolerancesFor("splat", {}), "de_vs_raycast_p95"));
+  // A backend's key in the scene covers its modes.
+  EXPECT_EQ(find(tolerancesFor("gl", {{"gl", {{"de_vs_raycast_mean", 0.5}}}}, {{"mode", "splat"}}),
+                 "de_vs_raycast_mean"),
+            0.5);
+  // The run's options over the scene's, for its own backend only.
+  const RunSpec spec{"gl", "rgb", {{"gl", {{"mode", "splat"}}}, {"splat", {{"sigma", 1}}}}};
+  EXPECT_EQ(runBackendOptions(spec, {{"gl", {{"mode", "raycast"}, {"sheet", 2}}}}),
+            nlohmann::json({{"mode", "splat"}, {"sheet", 2}}));
+  EXPECT_EQ(runBackendOptions({"gl", "rgb", {}}, {{"gl", {{"mode", "splat"}}}}),
+            nlohmann::json({{"mode", "splat"}}));
 }
 
 TEST(Comparison, RaycastAgainstItselfAndATightToleranceFails) {
