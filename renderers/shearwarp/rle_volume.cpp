@@ -432,6 +432,13 @@ void encodeSlice(const SliceSource& src, const SliceGroup<T>& values,
   }
 }
 
+// The one range check of an encoding's slice samples (RleVolume indexes its cache by them).
+void requireSliceSamples(int m) {
+  if (m < 1 || m > RleVolume::kMaxSliceSamples)
+    throw Error(fmt::format("shearwarp: {} slice samples per voxel; 1 to {} are supported", m,
+                            RleVolume::kMaxSliceSamples));
+}
+
 }  // namespace
 
 bool cellOccupied(const ClassifiedVolume& cv, std::span<const int> nonzero_prefix, int x, int y,
@@ -462,9 +469,7 @@ AxisEncoding::AxisEncoding(const ClassifiedVolume& cv, int axis, int slice_sampl
   n_i_ = cv.dims[axis_i_];
   n_j_ = cv.dims[axis_j_];
   const int voxel_slices = cv.dims[axis_];
-  if (m_ < 1 || m_ > RleVolume::kMaxSliceSamples)
-    throw Error(fmt::format("shearwarp: {} slice samples per voxel; 1 to {} are supported", m_,
-                            RleVolume::kMaxSliceSamples));
+  requireSliceSamples(m_);
   if (m_ > 1 && cv.labels)
     throw Error(fmt::format("shearwarp: a label map has no values between its voxel slices, so it "
                             "takes one sample per slice (slice_samples 1, not {})",
@@ -552,9 +557,7 @@ std::shared_ptr<const RleVolume> RleVolume::of(const ClassifiedVolume& cv) {
 }
 
 const AxisEncoding& RleVolume::encoding(int axis, int slice_samples) const {
-  if (slice_samples < 1 || slice_samples > kMaxSliceSamples)
-    throw Error(fmt::format("shearwarp: {} slice samples per voxel; 1 to {} are supported",
-                            slice_samples, kMaxSliceSamples));
+  requireSliceSamples(slice_samples);
   const int n = axis * kMaxSliceSamples + slice_samples - 1;
   std::call_once(once_[n],
                  [&] { axes_[n] = std::make_unique<AxisEncoding>(cv_, axis, slice_samples); });

@@ -32,6 +32,18 @@ namespace {
 // is then the exact line integral, at any angle, and so is exp(−σ d).
 nlohmann::json preClassified() { return {{"shearwarp", {{"classification", "pre"}}}}; }
 
+// The message of the svr::Error that `render` throws; a test failure if it throws none.
+template <class Render>
+std::string errorOf(const Render& render) {
+  try {
+    render();
+  } catch (const Error& e) {
+    return e.what();
+  }
+  ADD_FAILURE() << "no svr::Error was thrown";
+  return {};
+}
+
 // Both classification modes. Pre-classified, the voxels' transmissions are interpolated, then
 // raised to the slice-spacing ratio through a 4096-step table; inside the slab every voxel is
 // one material, so the slab's transmittance is exp(−σ d) there too (measured: equal to 5
@@ -388,14 +400,9 @@ TEST(ShearWarp, LabelMapsAndPreClassifiedRecordsTakeOneSamplePerSlice) {
   const ClassifiedVolume labels = classifyScene(scene, *model);
   EXPECT_THROW(shearwarp::AxisEncoding(labels, 2, 2), Error);
   scene.renderer_options = {{"shearwarp", {{"slice_samples", 2}}}};
-  try {
-    test::render(ShearWarpRenderer(), scene, labels);
-    FAIL();
-  } catch (const Error& e) {
-    EXPECT_NE(std::string(e.what()).find("a label map has no values between its voxel slices"),
-              std::string::npos)
-        << e.what();
-  }
+  const std::string between = errorOf([&] { test::render(ShearWarpRenderer(), scene, labels); });
+  EXPECT_NE(between.find("a label map has no values between its voxel slices"), std::string::npos)
+      << between;
   scene.renderer_options = {{"shearwarp", {{"slice_samples", 0}}}};
   const auto automatic = test::render(ShearWarpRenderer(), scene, labels);
   scene.renderer_options = {{"shearwarp", {{"slice_samples", 1}}}};
@@ -405,14 +412,8 @@ TEST(ShearWarp, LabelMapsAndPreClassifiedRecordsTakeOneSamplePerSlice) {
   Scene engine = loadScene(test::rendererDataDir() + "/scenes/engine.json", test::rendererLibrary());
   engine.width = engine.height = 32;
   engine.renderer_options = {{"shearwarp", {{"classification", "pre"}, {"slice_samples", 2}}}};
-  try {
-    test::render(ShearWarpRenderer(), engine, *model);
-    FAIL();
-  } catch (const Error& e) {
-    EXPECT_NE(std::string(e.what()).find("slice_samples 2 needs classification=post"),
-              std::string::npos)
-        << e.what();
-  }
+  const std::string pre = errorOf([&] { test::render(ShearWarpRenderer(), engine, *model); });
+  EXPECT_NE(pre.find("slice_samples 2 needs classification=post"), std::string::npos) << pre;
 }
 
 ImageDifference relitDifference(const LightIndependentImage& a, const LightIndependentImage& b,
@@ -659,22 +660,13 @@ TEST(ShearWarp, RefusesPerspectiveCamerasAndUnknownOptions) {
   Scene scene = test::phantomScene();
   const auto model = makeSpectralModel(test::rendererObserver(), 3);
   scene.camera.fov_degrees = 30.0;
-  try {
-    test::render(ShearWarpRenderer(), scene, *model);
-    FAIL();
-  } catch (const Error& e) {
-    EXPECT_NE(std::string(e.what()).find("shearwarp renders orthographic cameras only"),
-              std::string::npos)
-        << e.what();
-  }
+  const std::string perspective = errorOf([&] { test::render(ShearWarpRenderer(), scene, *model); });
+  EXPECT_NE(perspective.find("shearwarp renders orthographic cameras only"), std::string::npos)
+      << perspective;
   scene = test::phantomScene();
   scene.renderer_options = {{"shearwarp", {{"supersampel", 2}}}, {"splat", {{"mode", "sheet"}}}};
-  try {
-    test::render(ShearWarpRenderer(), scene, *model);
-    FAIL();
-  } catch (const Error& e) {
-    EXPECT_NE(std::string(e.what()).find("supersampel"), std::string::npos) << e.what();
-  }
+  const std::string unknown = errorOf([&] { test::render(ShearWarpRenderer(), scene, *model); });
+  EXPECT_NE(unknown.find("supersampel"), std::string::npos) << unknown;
   scene.renderer_options = {{"shearwarp", {{"supersample", 9}}}};
   EXPECT_THROW(test::render(ShearWarpRenderer(), scene, *model), Error);
 }
