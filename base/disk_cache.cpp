@@ -13,10 +13,12 @@
 namespace svr {
 namespace fs = std::filesystem;
 
-std::string sha256Hex(const std::string& text) {
+std::string sha256Hex(const std::string& text) { return sha256Hex(text.data(), text.size()); }
+
+std::string sha256Hex(const void* data, std::size_t size) {
   unsigned char digest[EVP_MAX_MD_SIZE];
   unsigned int length = 0;
-  if (EVP_Digest(text.data(), text.size(), digest, &length, EVP_sha256(), nullptr) != 1)
+  if (EVP_Digest(data, size, digest, &length, EVP_sha256(), nullptr) != 1)
     throw std::runtime_error("sha256: EVP_Digest failed");
   std::string hex;
   for (unsigned int i = 0; i < length; ++i) hex += fmt::format("{:02x}", digest[i]);

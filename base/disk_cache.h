@@ -22,6 +22,7 @@ namespace svr {
 
 // Hex SHA-256 of text.
 std::string sha256Hex(const std::string& text);
+std::string sha256Hex(const void* data, std::size_t size);
 
 // A piece of keys and payloads the producers share: a vector's values as a JSON array (doubles
 // round-trip exactly). The observer's key is spectral/observer_key.h.

@@ -451,6 +451,16 @@ std::unique_ptr<ComponentwiseModel> withChannelSplit(const ComponentwiseModel& m
                                               model.lightMatrixKind(), model.spectrumToXyz());
 }
 
+std::unique_ptr<ComponentwiseModel> rgbFactorModel(const Observer& observer, int k) {
+  if (k < 3) throw Error(fmt::format("rgb in {} channels: rgb has 3", k));
+  const auto rgb = makeRgbModel(observer);
+  auto model = std::make_unique<ComponentwiseModel>(ModelKind::kFactor, "rgb", observer.grid(),
+                                                    rgb->projection(), rgb->toXyz(),
+                                                    Eigen::MatrixXd());
+  for (int c = 3; c < k; ++c) model = withChannelSplit(*model);
+  return model;
+}
+
 std::unique_ptr<ComponentwiseModel> bandFactorModel(const Observer& observer, int k,
                                                     LightMatrixKind light_matrix) {
   const auto bands = makeSpectralModel(observer, k, light_matrix);

@@ -54,6 +54,11 @@ double trainingSetError(const ColourModel& model, const Observer& observer,
 // every relit colour is the same. A k-channel candidate that is never worse than k − 1's.
 std::unique_ptr<ComponentwiseModel> withChannelSplit(const ComponentwiseModel& model);
 
+// rgb as a factor:k candidate (k ≥ 3): rgb's projection with its last channel split k − 3
+// times, relit with projected light matrices, so every relit colour is rgb's. factor:k then
+// never has to lose to rgb.
+std::unique_ptr<ComponentwiseModel> rgbFactorModel(const Observer& observer, int k);
+
 // k equal bands of the grid (spectral:k's band means) as a factor:k candidate: its projection is
 // non-negative, so coefficients of a transmittance stay in [0, 1] without clamping and deep
 // products stay exact in every band's mean. Stable under any absorption, if coarse.

@@ -117,32 +117,24 @@ void markOccupiedBlocks(const Volume& volume, ClassifiedVolume& cv) {
 
 }  // namespace
 
-ClassifiedVolume classify(const Volume& volume, const TransferFunction& tf,
-                          const ColourModel& model, const ClassificationOptions& options) {
+namespace {
+
+// The classification's tables for `model`: k, T's channels, white, and one entry per bin or
+// label. What the volume gives (entries, value range) is already in cv.
+void bakeTables(ClassifiedVolume& cv, const TransferFunction& tf, const ColourModel& model,
+                const ClassificationOptions& options) {
   if (!model.componentwise())
     throw Error(fmt::format("model {} multiplies with k×k matrices; the renderers take "
                             "componentwise models only (rgb, factor:k, spectral:n)",
                             model.name()));
-  if (!(options.step_world > 0) || !std::isfinite(options.step_world))
-    throw Error(fmt::format("classification: step {} must be > 0", options.step_world));
-  if (options.bins < 2 || options.bins > (1 << 20))
-    throw Error(fmt::format("classification: {} bins is outside 2..{}", options.bins, 1 << 20));
   const int k = model.channels();
   if (options.baked_light && options.baked_light->size() != k)
     throw Error(fmt::format("classification: baked light has {} coefficients, model {} has {}",
                             options.baked_light->size(), model.name(), k));
   const Eigen::VectorXd light =
       options.baked_light ? *options.baked_light : Eigen::VectorXd::Ones(k);
-
-  ClassifiedVolume cv;
   cv.k = k;
   cv.t_channels = tf.achromatic() ? 1 : k;
-  cv.labels = tf.kind == TransferFunction::Kind::kLabels;
-  cv.dims = volume.dims();
-  cv.brick = volume.brick();
-  cv.spacing = volume.spacing();
-  cv.step_world = options.step_world;
-  cv.values = volume.toFloat();
   const Eigen::VectorXd white = model.white().cwiseProduct(light);
   cv.white.assign(white.data(), white.data() + k);
 
@@ -151,13 +143,54 @@ ClassifiedVolume classify(const Volume& volume, const TransferFunction& tf,
     refl_coeffs.push_back(model.project(m.reflectance).cwiseProduct(light));
     shapes.push_back(absorptionShape(m, model.grid().count));
   }
-
   std::vector<Entry> entries;
+  for (int e = 0; e < cv.entries; ++e) {
+    if (cv.labels) {
+      const int mat = e < static_cast<int>(tf.labels.size()) ? tf.labels[e] : -1;
+      entries.push_back(blend(mat < 0 ? std::vector<std::pair<int, double>>{}
+                                      : std::vector<std::pair<int, double>>{{mat, 1.0}},
+                              1.0, tf, model, options.step_world, cv.t_channels > 1,
+                              refl_coeffs, shapes));
+    } else {
+      const double v = cv.value_scale > 0 ? cv.value_lo + e / cv.value_scale : cv.value_lo;
+      entries.push_back(blend(tf.materialWeights(v), tf.opacityFactor(v), tf, model,
+                              options.step_world, cv.t_channels > 1, refl_coeffs, shapes));
+    }
+  }
+  storeEntries(entries, cv);
+  // What backends derived from the old tables is stale.
+  cv.derived = std::make_shared<DerivedCache>();
+}
+
+}  // namespace
+
+ClassifiedVolume classify(const Volume& volume, const TransferFunction& tf,
+                          const ColourModel& model, const ClassificationOptions& options) {
+  if (!(options.step_world > 0) || !std::isfinite(options.step_world))
+    throw Error(fmt::format("classification: step {} must be > 0", options.step_world));
+  if (options.bins < 2 || options.bins > (1 << 20))
+    throw Error(fmt::format("classification: {} bins is outside 2..{}", options.bins, 1 << 20));
+
+  ClassifiedVolume cv;
+  cv.labels = tf.kind == TransferFunction::Kind::kLabels;
+  cv.dims = volume.dims();
+  cv.brick = volume.brick();
+  cv.spacing = volume.spacing();
+  cv.step_world = options.step_world;
   const auto [lo, hi] = volume.valueRange();
   if (cv.labels) {
     if (lo < 0 || hi > 65535)
       throw Error(fmt::format("{}: a label map needs integer labels in 0..65535, got {} values "
                               "in {}..{}", volume.source(), toString(volume.type()), lo, hi));
+    cv.entries = std::max(static_cast<int>(hi) + 1, static_cast<int>(tf.labels.size()));
+  } else {
+    cv.entries = options.bins;
+    cv.value_lo = lo;
+    cv.value_scale = hi > lo ? (options.bins - 1) / (hi - lo) : 0.0;
+  }
+  bakeTables(cv, tf, model, options);
+  cv.values = volume.toFloat();
+  if (cv.labels) {
     if (!isIntegerType(volume.type()))  // float label maps are fine while every label is whole
       for (std::size_t i = 0; i < cv.values.size(); ++i)
         if (cv.values[i] != std::floor(cv.values[i])) {
@@ -168,47 +201,31 @@ ClassifiedVolume classify(const Volume& volume, const TransferFunction& tf,
           throw Error(fmt::format("{}: voxel ({}, {}, {}) holds {}, not a whole label",
                                   volume.source(), x + o[0], y + o[1], z + o[2], cv.values[i]));
         }
-    cv.entries = std::max(static_cast<int>(hi) + 1, static_cast<int>(tf.labels.size()));
-    for (int label = 0; label < cv.entries; ++label) {
-      const int mat = label < static_cast<int>(tf.labels.size()) ? tf.labels[label] : -1;
-      if (mat < 0)
-        entries.push_back(blend({}, 1.0, tf, model, options.step_world, cv.t_channels > 1,
-                                refl_coeffs, shapes));
-      else
-        entries.push_back(blend({{mat, 1.0}}, 1.0, tf, model, options.step_world,
-                                cv.t_channels > 1, refl_coeffs, shapes));
-    }
     cv.label.resize(cv.values.size());
     const std::int64_t n = static_cast<std::int64_t>(cv.values.size());
 #pragma omp parallel for schedule(static) if (n >= kParallelVoxels)
     for (std::int64_t i = 0; i < n; ++i) cv.label[i] = static_cast<std::uint16_t>(cv.values[i]);
-  } else {
-    cv.entries = options.bins;
-    cv.value_lo = lo;
-    cv.value_scale = hi > lo ? (options.bins - 1) / (hi - lo) : 0.0;
-    for (int b = 0; b < options.bins; ++b) {
-      const double v = hi > lo ? lo + b / cv.value_scale : lo;
-      entries.push_back(blend(tf.materialWeights(v), tf.opacityFactor(v), tf, model,
-                              options.step_world, cv.t_channels > 1, refl_coeffs, shapes));
-    }
-  }
 
-  storeEntries(entries, cv);
-
-  // Gradients: of the data for scalar volumes; of the per-voxel extinction for label maps
-  // (label numbers have no meaningful gradient).
-  if (cv.labels) {
+    // Gradients of the per-voxel extinction (label numbers have no meaningful gradient); the
+    // extinction, like the opacity, does not depend on the model.
     std::vector<float> extinction(cv.entries);  // per label, so the voxel loop is a lookup
     for (int e = 0; e < cv.entries; ++e)
       extinction[e] = -std::log1p(-std::min(cv.alpha[e], 0.999999f));
     cv.shading_field.resize(cv.values.size());
-    const std::int64_t n = static_cast<std::int64_t>(cv.values.size());
 #pragma omp parallel for schedule(static) if (n >= kParallelVoxels)
     for (std::int64_t i = 0; i < n; ++i) cv.shading_field[i] = extinction[cv.label[i]];
   }
 
   markOccupiedBlocks(volume, cv);
   return cv;
+}
+
+void setModel(ClassifiedVolume& cv, const TransferFunction& tf, const ColourModel& model,
+              const ClassificationOptions& options) {
+  if (options.step_world != cv.step_world)
+    throw Error(fmt::format("classification: a new model at step {} for a classification at "
+                            "step {}; classify again", options.step_world, cv.step_world));
+  bakeTables(cv, tf, model, options);
 }
 
 }  // namespace svr

@@ -69,4 +69,11 @@ struct ClassifiedVolume {
 ClassifiedVolume classify(const Volume& volume, const TransferFunction& tf,
                           const ColourModel& model, const ClassificationOptions& options);
 
+// The same classification for another model: the tables are baked again and what backends
+// derived is dropped, while the volume's part (values, labels, occupied blocks: the opacity
+// does not depend on the model) is kept. Equal to classify() with `model`; for renders of one
+// scene under many models (the model probe). The step must be the classification's own.
+void setModel(ClassifiedVolume& cv, const TransferFunction& tf, const ColourModel& model,
+              const ClassificationOptions& options);
+
 }  // namespace svr

@@ -6,9 +6,11 @@
 //                     deep products through every spectral absorber of the scene, at several
 //                     strengths and depths (none where all absorb achromatically), for
 //                     full-spectrum light matrices (factor:k/projected: for projected ones, the
-//                     paper's, without the white); the best on that palette of the model
-//                     trained for k, k equal bands and factor:(k−1) with a channel split, so it
-//                     never loses to fewer channels there and its transmittances stay in [0, 1];
+//                     paper's, without the white); then the best on a small render of the scene
+//                     of the model trained for k, k equal bands, factor:(k−1) with a channel
+//                     split and rgb in k channels, so it never loses to fewer channels or to rgb
+//                     there and its transmittances stay in [0, 1] (renderers/model/
+//                     factor_choice.h);
 //   auto              the smallest factor k (3..16, full light matrices) whose relit image
 //                     stays within the scene's model_target: a probe render of the scene
 //                     itself (raycast, 96 pixels on the longer side) against spectral:81, the
@@ -21,6 +23,7 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
+#include "renderers/model/model_probe.h"
 #include "renderers/scene/scene.h"
 #include "spectral/colorimetry.h"
 #include "spectral/colour_model.h"
@@ -38,39 +41,15 @@ struct SceneModel {
   double palette_de2000 = NAN;
   double target = NAN;
   double probe_de2000 = NAN;  // auto: the chosen model's probe error (worst light's mean)
+  // factor:k: the chosen candidate's error on its probe (mean over lights and mixes); NaN in a
+  // brick, which chooses on the palette (renderers/model/factor_choice.h).
+  double choice_de2000 = NAN;
   // Trained models: read from the disk cache (base/disk_cache.h) rather than trained now.
   bool cached = false;
 
   // {"asked", "model", "k", "description", "palette_de2000"?, "target"?, "probe_de2000"?,
-  // "cached"?} for render.json and report.json.
+  // "choice_de2000"?, "cached"?} for render.json and report.json.
   nlohmann::json record() const;
-};
-
-// auto's probe (issue 19): the scene itself rendered small by the registry's reference backend
-// (the raycaster) with spectral:81, the exact product, and a candidate's relit image compared
-// with it under every light and mix, the backdrop included. The probe and the candidates share
-// step, termination and resolution, so what differs is the colour model alone.
-class ModelProbe {
- public:
-  static constexpr int kLongerSide = 96;
-  // The scene at the probe's size: kLongerSide pixels on its longer side (never enlarged).
-  static Scene sized(Scene scene);
-  ModelProbe(const Scene& scene, const Observer& observer);
-  // The worst over lights and mixes of the mean ΔE2000 against spectral:81.
-  double error(const ColourModel& model) const;
-  // The mean ΔE2000 against spectral:81 under each light, then each mix (infinite where the
-  // relit image is not finite).
-  std::vector<double> errors(const ColourModel& model) const;
-  std::string size() const;  // "96×96"
-
- private:
-  LightIndependentImage render(const ColourModel& model) const;
-
-  Scene scene_;
-  const Observer& observer_;
-  std::vector<Spectrum> lights_;
-  std::unique_ptr<ColourModel> reference_model_;
-  LightIndependentImage reference_;
 };
 
 // Throws svr::Error "FLAG 'NAME': why" unless NAME is auto or a model that can be made on `grid`

@@ -1,7 +1,9 @@
 #include "spectral/factor_training.h"
 
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 
+#include "base/error.h"
 #include "spectral/componentwise_model.h"
 #include "spectral/model_error.h"
 #include "tests/spectral/test_data.h"
@@ -104,6 +106,32 @@ TEST(FactorTraining, PrincipalBasisIsOrthonormalWithPositiveMean) {
 // Every model a renderer may use, k = 3..10, held-out chips: the coefficients of t^256 stay
 // finite and bounded (no blow-up through a near-zero white coefficient), and so does the
 // relit XYZ.
+// rgb as a factor:k candidate relights every product, deep ones included, as rgb does: the
+// split channels carry each coefficient in halves.
+TEST(FactorTraining, RgbInKChannelsRelightsAsRgb) {
+  const auto rgb = makeRgbModel(test::observer());
+  const auto& set = test::smallTrainingSet();
+  for (int k = 3; k <= 8; ++k) {
+    const auto m = rgbFactorModel(test::observer(), k);
+    ASSERT_EQ(m->channels(), k);
+    EXPECT_EQ(m->name(), fmt::format("factor:{}/projected", k));
+    for (const Spectrum& light : set.lights)
+      for (size_t j = 0; j < set.reflectances.size(); ++j)
+        for (int depth : {0, 16}) {
+          auto relit = [&](const ComponentwiseModel& model) {
+            Eigen::VectorXd c = model.project(set.reflectances[j]);
+            if (!set.absorbers.empty())
+              c = c.cwiseProduct(
+                  model.project(set.absorbers[j]).array().pow(depth).matrix());
+            return Eigen::Vector3d(model.lightMatrix(light) * c);
+          };
+          const Eigen::Vector3d want = relit(*rgb);
+          EXPECT_LE((relit(*m) - want).norm(), 1e-12 * (1 + want.norm())) << k;
+        }
+  }
+  EXPECT_THROW(rgbFactorModel(test::observer(), 2), Error);
+}
+
 TEST(ColourModels, StayFiniteAndBoundedUnderDeepAbsorption) {
   std::vector<Spectrum> held_out;
   const auto& names = test::library().munsellNames();

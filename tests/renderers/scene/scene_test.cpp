@@ -205,5 +205,52 @@ TEST(Classification, XrayMaterialsScatterButDoNotOcclude) {
   EXPECT_FLOAT_EQ(cv.transmission.back(), 1.0f);
 }
 
+// A classification given another model (the model probe's way) equals classifying with that
+// model, for a scalar volume with a spectral absorber and for a label map: the tables, channels
+// and white follow the model, the volume's part is kept, and what backends derived from the old
+// tables is dropped.
+TEST(Classification, SetModelEqualsClassifyingWithThatModel) {
+  const Scene phantom = test::phantomScene();
+  TransferFunction labels;
+  labels.kind = TransferFunction::Kind::kLabels;
+  labels.materials = phantom.transfer_function.materials;
+  labels.labels = {-1, 0, static_cast<int>(labels.materials.size()) - 1};
+  std::vector<float> values(6 * 5 * 4);
+  for (size_t i = 0; i < values.size(); ++i) values[i] = static_cast<float>(i * 7 % 4);
+  const Volume label_volume =
+      Volume::fromValues({6, 5, 4}, glm::dvec3(1.0), values, "labels in a test");
+  const auto first = makeSpectralModel(test::rendererObserver(), 81);
+  const auto then = makeRgbModel(test::rendererObserver());
+  ClassificationOptions o;
+  o.step_world = 0.7;
+  o.bins = 64;
+  using Case = std::pair<const Volume*, const TransferFunction*>;
+  for (const auto& [volume, tf] : {Case{&phantom.volume, &phantom.transfer_function},
+                                   Case{&label_volume, &labels}}) {
+    SCOPED_TRACE(volume->source());
+    ClassifiedVolume cv = classify(*volume, *tf, *first, o);
+    ASSERT_EQ(cv.t_channels, 81) << "a spectral absorber: T has the model's channels";
+    const auto derived = cv.derived;
+    setModel(cv, *tf, *then, o);
+    const ClassifiedVolume fresh = classify(*volume, *tf, *then, o);
+    EXPECT_EQ(cv.k, 3);
+    EXPECT_EQ(cv.t_channels, fresh.t_channels);
+    EXPECT_EQ(cv.entries, fresh.entries);
+    EXPECT_EQ(cv.alpha, fresh.alpha);
+    EXPECT_EQ(cv.reflectance, fresh.reflectance);
+    EXPECT_EQ(cv.specular, fresh.specular);
+    EXPECT_EQ(cv.transmission, fresh.transmission);
+    EXPECT_EQ(cv.white, fresh.white);
+    EXPECT_EQ(cv.values, fresh.values);
+    EXPECT_EQ(cv.label, fresh.label);
+    EXPECT_EQ(cv.shading_field, fresh.shading_field);
+    EXPECT_EQ(cv.block_occupied, fresh.block_occupied);
+    EXPECT_NE(cv.derived, derived);
+    ClassificationOptions other = o;
+    other.step_world = 0.5;
+    EXPECT_THROW(setModel(cv, *tf, *first, other), Error);
+  }
+}
+
 }  // namespace
 }  // namespace svr
