@@ -136,7 +136,17 @@ void RenderSession::chooseModel(const std::string& name) {
 
 void RenderSession::classify() {
   const auto t0 = Clock::now();
-  classified_ = classifyScene(scene_, *model_.model);
+  // Choosing the model may have classified the volume for its probe: that classification
+  // with the chosen model's tables is the one classifyScene would make.
+  const ClassificationOptions options = classificationOptions(scene_);
+  if (model_.classification && model_.classification->step_world == options.step_world &&
+      (model_.classification->labels || model_.classification->entries == options.bins)) {
+    classified_ = std::move(*model_.classification);
+    svr::setModel(classified_, scene_.transfer_function, *model_.model, options);
+  } else {
+    classified_ = classifyScene(scene_, *model_.model);
+  }
+  model_.classification.reset();
   // The light-independent image and every relit image, before any of them is allocated.
   const std::uint64_t relit_count = scene_.lights.size() + scene_.mixes.size();
   checkMemoryBudget(LightIndependentImage::bytesFor(scene_.width, scene_.height, classified_.k,

@@ -147,7 +147,8 @@ nlohmann::json probeKey(const Scene& probe) {
       {"step", probe.stepWorld()},
       {"termination", probe.termination},
       {"bins", probe.bins},
-      {"options", probe.renderer_options},
+      {"options",
+       probe.renderer_options.value(referenceRendererName(), nlohmann::json::object())},
       {"shading",
        {probe.shading.ambient, probe.shading.diffuse, probe.shading.specular,
         probe.shading.shininess}},
@@ -161,6 +162,13 @@ nlohmann::json probeKey(const Scene& probe) {
 
 FactorChoice::FactorChoice(const Scene& scene, const Observer& observer)
     : scene_(scene), observer_(observer), probing_(!scene.volume.brick()) {}
+
+std::shared_ptr<ClassifiedVolume> FactorChoice::releaseClassification() {
+  if (!probe_) return nullptr;
+  auto out = std::make_shared<ClassifiedVolume>(probe_->releaseClassification());
+  probe_.reset();
+  return out;
+}
 
 const ModelProbe* FactorChoice::probe() {
   if (!probing_) return nullptr;
@@ -239,7 +247,8 @@ SceneModel FactorChoice::choose(const ModelName& name, const TrainingSet& palett
   size_t best = std::min_element(errors.begin(), errors.end()) - errors.begin();
   if (all[0].how == "trained" && errors[0] <= errors[best] + kMargin) best = 0;
   if (!std::isfinite(errors[best]))
-    throw Error(fmt::format("factor:{}: no candidate renders the scene finite ({})", name.k, trail));
+    throw Error(
+        fmt::format("factor:{}: no candidate renders the scene finite ({})", name.k, trail));
   SceneModel chosen{std::move(all[best].model), "", name.str()};
   chosen.palette_de2000 = trainingSetError(*chosen.model, observer_, palette);
   chosen.description =
@@ -247,7 +256,8 @@ SceneModel FactorChoice::choose(const ModelName& name, const TrainingSet& palett
                       "ΔE2000 over {} lights and mixes: {}; trained on the scene palette ({} "
                       "lights × {} reflectances, {} light matrices)",
                       name.k, all[best].how, p->size(),
-                      scene_.lights.size() + scene_.mixes.size(), trail, palette.lights.size(), palette.reflectances.size(),
+                      scene_.lights.size() + scene_.mixes.size(), trail,
+                      palette.lights.size(), palette.reflectances.size(),
                       toString(name.light_matrix))
         : fmt::format("factor:{} ({}), the best on the scene palette ({} lights × {} "
                       "reflectances, {} light matrices; a brick has no probe render), mean "

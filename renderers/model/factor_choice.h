@@ -37,6 +37,9 @@ class FactorChoice {
   FactorChoice(const Scene& scene, const Observer& observer);
   // factor:k (name.kind must be kFactor).
   SceneModel make(const ModelName& name);
+  // The probe's classification when a choice rendered one (null otherwise), for the caller
+  // to reuse (SceneModel::classification); no further make() may follow.
+  std::shared_ptr<ClassifiedVolume> releaseClassification();
 
  private:
   struct Candidate {

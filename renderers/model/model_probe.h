@@ -34,6 +34,9 @@ class ModelProbe {
   std::vector<double> errors(const ColourModel& model) const;
   std::string size() const;  // "96×96"
   const Scene& scene() const { return scene_; }
+  // The probe's classification of the scene's volume (its tables the last model's), moved
+  // out for a caller that classifies the same scene next (setModel); the probe is spent.
+  ClassifiedVolume releaseClassification() { return std::move(classified_); }
 
  private:
   // Renders with `model`: the volume is classified once, and each model bakes its tables only

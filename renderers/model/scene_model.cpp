@@ -46,6 +46,7 @@ SceneModel chooseAutoModel(const Scene& scene, const Observer& observer) {
   best->asked = "auto";
   best->target = scene.auto_target;
   best->probe_de2000 = best_error;
+  best->classification = factor.releaseClassification();
   return std::move(*best);
 }
 
@@ -92,7 +93,10 @@ SceneModel makeSceneModel(const std::string& name, const Scene& scene, const Obs
                               "rgb, factor:k, spectral:n or auto", scene.file));
     case ModelKind::kFactor: break;
   }
-  return FactorChoice(scene, observer).make(parsed);
+  FactorChoice choice(scene, observer);
+  SceneModel chosen = choice.make(parsed);
+  chosen.classification = choice.releaseClassification();
+  return chosen;
 }
 
 }  // namespace svr

@@ -46,6 +46,10 @@ struct SceneModel {
   double choice_de2000 = NAN;
   // Trained models: read from the disk cache (base/disk_cache.h) rather than trained now.
   bool cached = false;
+  // factor:k and auto, when choosing rendered a probe: its classification of the scene's
+  // volume at the scene's step and bins, which the caller may take (setModel to `model`)
+  // instead of classifying the volume again. Null otherwise.
+  std::shared_ptr<ClassifiedVolume> classification;
 
   // {"asked", "model", "k", "description", "palette_de2000"?, "target"?, "probe_de2000"?,
   // "choice_de2000"?, "cached"?} for render.json and report.json.

@@ -1,7 +1,8 @@
 // The render session's reused parts make the frames a fresh session makes: another model
 // through setModel is the image of a session built with that model, another view through
 // renderView is the image of a session whose scene has that camera and size, and taking the
-// image out leaves the session with none.
+// image out leaves the session with none. A model chosen on a probe render leaves its
+// classification to the session.
 
 #include "harness/render_session.h"
 
@@ -9,7 +10,10 @@
 
 #include <memory>
 
+#include "base/disk_cache.h"
 #include "base/error.h"
+#include "renderers/model/scene_model.h"
+#include "renderers/render/scene_render.h"
 #include "renderers/scene/camera.h"
 #include "tests/renderers/test_scenes.h"
 
@@ -63,6 +67,29 @@ TEST(RenderSession, RenderViewRendersAsASessionWithThatCamera) {
   fresh.render();
   expectSameImage(view, fresh.image());
   EXPECT_FALSE(session.rendered());  // a view is returned, not kept
+}
+
+// A factor:k chosen on a probe render hands the probe's classification of the volume on to
+// the session, which bakes the chosen model's tables into it instead of classifying again: the
+// same classification as a fresh one, table for table.
+TEST(RenderSession, TakesTheClassificationTheModelsProbeMade) {
+  // A cached choice renders no probe; this process runs without the cache from here on.
+  DiskCache::disableProcessCache();
+  const Scene scene = test::phantomScene();
+  SceneModel chosen = makeSceneModel("factor:6", scene, spectra()->observer);
+  ASSERT_TRUE(chosen.classification) << chosen.description;
+  RenderSession session(spectra(), scene, raycastWith("factor:6"), "phantom");
+  EXPECT_EQ(session.model().model->toJson(), chosen.model->toJson());
+  const ClassifiedVolume fresh = classifyScene(scene, *chosen.model);
+  const ClassifiedVolume& taken = session.classified();
+  EXPECT_EQ(taken.k, 6);
+  EXPECT_EQ(taken.alpha, fresh.alpha);
+  EXPECT_EQ(taken.reflectance, fresh.reflectance);
+  EXPECT_EQ(taken.transmission, fresh.transmission);
+  EXPECT_EQ(taken.white, fresh.white);
+  EXPECT_EQ(taken.values, fresh.values);
+  EXPECT_EQ(taken.block_occupied, fresh.block_occupied);
+  EXPECT_FALSE(session.model().classification);  // taken, not kept twice
 }
 
 TEST(RenderSession, TakeImageLeavesNone) {

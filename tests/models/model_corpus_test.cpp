@@ -1,8 +1,8 @@
 // Issue 40's guarantees on a slice of the stress corpus (bench/models/scene_corpus.h, seed 40):
 // scenes written as users write them, with spectral absorbers, many or narrow-band lights,
 // x-ray materials and backdrops. The first forty scenes, four to a test case so that ctest runs
-// them in parallel (training and choosing every k from 3 to 16 takes about 5 s a scene here). svr_model_bench
-// (bench/models) measures the whole corpus and prints the shares.
+// them in parallel (training and choosing every k from 3 to 16 takes about 10 s a scene here).
+// svr_model_bench (bench/models) measures the whole corpus and prints the shares.
 #include <fmt/format.h>
 #include <gtest/gtest.h>
 
