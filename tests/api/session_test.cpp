@@ -37,7 +37,9 @@ TEST(Session, RendersTheSceneAtTheAskedSizeWithTheAskedModel) {
   svr::Session session = svr::Session::fromFile(kPhantom, small("factor:4"));
   EXPECT_EQ(session.width(), 40);
   EXPECT_EQ(session.height(), 32);
-  EXPECT_EQ(session.modelName(), "factor:4");
+  // factor:4 is the best of its candidates on the scene's render; on the phantom that is rgb
+  // in four channels, which relights with projected light matrices (factor:4/projected).
+  EXPECT_EQ(session.modelName().rfind("factor:4", 0), 0u) << session.modelName();
   EXPECT_EQ(session.rendererName(), "raycast");
   EXPECT_GE(session.imagePlanes(), 5);  // 4 S channels and at least one T channel
   const svr::RgbImage image = session.relight(session.lights().front());

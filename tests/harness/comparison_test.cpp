@@ -155,7 +155,11 @@ TEST(Comparison, ReferenceStepHalvesUntilConverged) {
   EXPECT_EQ(convergedReferenceStep(scene, observer, 0.05, 0.0).step_voxels, 0.05);
 }
 
-TEST(Sweep, ThreeChannelsBreakDownUnderDeepAbsorptionWhereSixHold) {
+// A depth sweep of the phantom (its box absorbs spectrally): six channels hold at every depth,
+// and never lose to three. (A trained factor:3 used to break down here, at more than twice
+// factor:6's error at depth 16; chosen on the scene's render, factor:3 is now rgb, which does
+// not, issue 40.)
+TEST(Sweep, SixChannelsHoldUnderDeepAbsorptionAndNeverLoseToThree) {
   const std::string out = (std::filesystem::temp_directory_path() / "svr_sweep_depth").string();
   SweepOptions o;
   o.data_dir = test::rendererDataDir();
@@ -170,9 +174,13 @@ TEST(Sweep, ThreeChannelsBreakDownUnderDeepAbsorptionWhereSixHold) {
   const SweepResult k3 = runSweepStudy(o);
   o.model = "factor:6";
   const SweepResult k6 = runSweepStudy(o);
-  const double deep3 = k3.curves[0].de_mean.back(), deep6 = k6.curves[0].de_mean.back();
-  EXPECT_TRUE(std::isfinite(deep3) && std::isfinite(deep6));
-  EXPECT_GT(deep3, 2.0 * deep6) << "factor:3 " << deep3 << " factor:6 " << deep6;
+  ASSERT_EQ(k3.values, (std::vector<double>{1, 16}));
+  for (size_t i = 0; i < k3.values.size(); ++i) {
+    const double e3 = k3.curves[0].de_mean[i], e6 = k6.curves[0].de_mean[i];
+    EXPECT_TRUE(std::isfinite(e3) && std::isfinite(e6));
+    EXPECT_LE(e6, 1.0) << "depth " << k3.values[i];
+    EXPECT_LE(e6, e3 + 0.05) << "depth " << k3.values[i] << ": factor:3 " << e3;
+  }
   EXPECT_TRUE(std::filesystem::exists(out + "/sweep.json"));
 }
 
