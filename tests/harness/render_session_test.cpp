@@ -83,12 +83,7 @@ TEST(RenderSession, TakesTheClassificationTheModelsProbeMade) {
   const ClassifiedVolume fresh = classifyScene(scene, *chosen.model);
   const ClassifiedVolume& taken = session.classified();
   EXPECT_EQ(taken.k, 6);
-  EXPECT_EQ(taken.alpha, fresh.alpha);
-  EXPECT_EQ(taken.reflectance, fresh.reflectance);
-  EXPECT_EQ(taken.transmission, fresh.transmission);
-  EXPECT_EQ(taken.white, fresh.white);
-  EXPECT_EQ(taken.values, fresh.values);
-  EXPECT_EQ(taken.block_occupied, fresh.block_occupied);
+  test::expectSameClassification(taken, fresh);
   EXPECT_FALSE(session.model().classification);  // taken, not kept twice
 }
 

@@ -1,5 +1,6 @@
 #include "tests/renderers/test_scenes.h"
 
+#include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
 namespace svr::test {
@@ -62,6 +63,21 @@ LightIndependentImage render(const Renderer& renderer, const Scene& scene,
                              const ColourModel& model,
                              const std::optional<nlohmann::json>& options) {
   return render(renderer, scene, classifyScene(scene, model), options);
+}
+
+void expectSameClassification(const ClassifiedVolume& a, const ClassifiedVolume& b) {
+  EXPECT_EQ(a.k, b.k);
+  EXPECT_EQ(a.t_channels, b.t_channels);
+  EXPECT_EQ(a.entries, b.entries);
+  EXPECT_EQ(a.alpha, b.alpha);
+  EXPECT_EQ(a.reflectance, b.reflectance);
+  EXPECT_EQ(a.specular, b.specular);
+  EXPECT_EQ(a.transmission, b.transmission);
+  EXPECT_EQ(a.white, b.white);
+  EXPECT_EQ(a.values, b.values);
+  EXPECT_EQ(a.label, b.label);
+  EXPECT_EQ(a.shading_field, b.shading_field);
+  EXPECT_EQ(a.block_occupied, b.block_occupied);
 }
 
 }  // namespace svr::test

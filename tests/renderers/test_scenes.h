@@ -6,6 +6,7 @@
 
 #include <optional>
 
+#include "renderers/classification/classification.h"
 #include "renderers/render/renderer.h"
 #include "renderers/scene/scene.h"
 #include "renderers/render/scene_render.h"
@@ -38,5 +39,8 @@ LightIndependentImage render(const Renderer& renderer, const Scene& scene,
 LightIndependentImage render(const Renderer& renderer, const Scene& scene,
                              const ColourModel& model,
                              const std::optional<nlohmann::json>& options = std::nullopt);
+
+// Two classifications hold the same channels, tables and volume part, value for value.
+void expectSameClassification(const ClassifiedVolume& a, const ClassifiedVolume& b);
 
 }  // namespace svr::test

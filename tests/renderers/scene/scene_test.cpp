@@ -234,17 +234,7 @@ TEST(Classification, SetModelEqualsClassifyingWithThatModel) {
     setModel(cv, *tf, *then, o);
     const ClassifiedVolume fresh = classify(*volume, *tf, *then, o);
     EXPECT_EQ(cv.k, 3);
-    EXPECT_EQ(cv.t_channels, fresh.t_channels);
-    EXPECT_EQ(cv.entries, fresh.entries);
-    EXPECT_EQ(cv.alpha, fresh.alpha);
-    EXPECT_EQ(cv.reflectance, fresh.reflectance);
-    EXPECT_EQ(cv.specular, fresh.specular);
-    EXPECT_EQ(cv.transmission, fresh.transmission);
-    EXPECT_EQ(cv.white, fresh.white);
-    EXPECT_EQ(cv.values, fresh.values);
-    EXPECT_EQ(cv.label, fresh.label);
-    EXPECT_EQ(cv.shading_field, fresh.shading_field);
-    EXPECT_EQ(cv.block_occupied, fresh.block_occupied);
+    test::expectSameClassification(cv, fresh);
     EXPECT_NE(cv.derived, derived);
     ClassificationOptions other = o;
     other.step_world = 0.5;
